@@ -1,0 +1,67 @@
+#pragma once
+// The reader's product: the file's bytes, its lines, and every motion as a
+// plain Move (arcs flattened), plus the slicer config found in the file.
+// Later stages never re-read the text; the writer copies it byte for byte.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gcode/role.hpp"
+
+namespace scaffold::gcode {
+
+enum class Dialect : std::uint8_t { Unknown, PrusaSlicer, SuperSlicer, OrcaSlicer, Slic3r, Cura };
+const char* dialect_name(Dialect d);
+
+struct Line {
+    std::uint64_t offset = 0;  // of the first byte in Program::text
+    std::uint32_t length = 0;  // without the line ending
+};
+
+enum class MoveKind : std::uint8_t {
+    Travel,     // XY and/or Z without extrusion
+    Extrude,    // XY with positive E
+    Retract,    // E only, negative (or G10)
+    Unretract,  // E only, positive (or G11)
+    Wipe,       // XY with negative E (retract while moving)
+};
+
+// One straight motion. Arcs become several Moves sharing their line.
+struct Move {
+    std::uint32_t line = 0;  // 0-based index into Program::lines
+    float x0 = 0, y0 = 0, z0 = 0;
+    float x1 = 0, y1 = 0, z1 = 0;
+    float e = 0;             // filament mm, + extrudes, after abs/rel and G92
+    float width = 0;         // from ;WIDTH: if the slicer wrote it, else 0
+    float feed_mm_per_min = 0;
+    MoveKind kind = MoveKind::Travel;
+    Role role = Role::Unknown;
+    std::uint8_t tool = 0;
+};
+
+// Layer comments written by the slicer; hints only, the Z of extrusions rules.
+struct LayerHint {
+    std::uint32_t line = 0;
+    double z = -1;       // from ;Z: (or -1)
+    double height = -1;  // from ;HEIGHT: (or -1)
+};
+
+struct Program {
+    std::string path;  // for messages; "-" for stdin
+    std::string text;  // the whole file, untouched
+    std::vector<Line> lines;
+    std::vector<Move> moves;
+    std::vector<LayerHint> layer_hints;
+    Dialect dialect = Dialect::Unknown;
+    std::map<std::string, std::string> config;  // slicer settings found in the file
+    bool saw_firmware_retraction = false;        // G10/G11 present
+    bool saw_relative_e = false;                 // M83 present
+    bool saw_arcs = false;
+
+    std::string_view line_text(std::size_t i) const {
+        return std::string_view(text).substr(lines[i].offset, lines[i].length);
+    }
+};
+
+}  // namespace scaffold::gcode

@@ -1,0 +1,32 @@
+#pragma once
+// Extrusion roles, normalised over the slicer dialects (;TYPE: names,
+// Slic3r per-line comments, Cura's upper-case types).
+#include <cstdint>
+#include <string_view>
+
+namespace scaffold::gcode {
+
+enum class Role : std::uint8_t {
+    Unknown,
+    ExternalPerimeter,
+    Perimeter,
+    OverhangPerimeter,
+    InternalInfill,
+    SolidInfill,
+    TopSolidInfill,
+    BridgeInfill,
+    Skirt,
+    Support,
+    SupportInterface,
+    WipeTower,
+    Custom,
+};
+
+// Role named by a ;TYPE: value or a Slic3r per-line comment; Unknown if none.
+Role role_from_name(std::string_view name);
+std::string_view role_name(Role role);
+inline bool is_support(Role r) { return r == Role::Support || r == Role::SupportInterface; }
+// Slicer-marked bridges: printed over air on purpose, held at both ends.
+inline bool is_bridge(Role r) { return r == Role::BridgeInfill || r == Role::OverhangPerimeter; }
+
+}  // namespace scaffold::gcode

@@ -1,0 +1,49 @@
+#pragma once
+// Layers are the distinct Z heights of extruding moves, in file order.
+// Each knows its line range, z, height and its extrusion segments with
+// width and role. The slicer's layer comments only place the boundaries.
+#include <cstdint>
+#include <vector>
+
+#include "gcode/program.hpp"
+#include "gcode/settings.hpp"
+
+namespace scaffold::layers {
+
+struct Bounds {
+    double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+    bool empty() const { return max_x < min_x || max_y < min_y; }
+};
+
+struct Segment {
+    float x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    float width = 0;           // mm, from ;WIDTH: or from E
+    gcode::Role role = gcode::Role::Unknown;
+    std::uint32_t move = 0;    // index into Program::moves
+};
+
+struct Layer {
+    double z = 0;              // top of the layer (the nozzle height)
+    double height = 0;         // z minus the z of the layer below
+    std::uint32_t first_line = 0;   // first line belonging to the layer
+    std::uint32_t end_line = 0;     // one past the last line of the layer
+    std::uint32_t last_extrusion_line = 0;
+    bool on_bed = false;       // rests on the bed (first layer, or a purge line)
+    int below = -1;            // index of the layer beneath (nearest lower z), -1 = bed
+    std::vector<Segment> segments;
+};
+
+struct LayerStack {
+    std::vector<Layer> layers;  // in file order; z increases except for a purge
+                                // line printed before the first layer (on_bed)
+    Bounds bounds;              // XY of all extrusions (model and skirt)
+};
+
+// Width of a bead from filament used, its length and layer height
+// (rectangle with rounded ends, as Slic3r/PrusaSlicer model it).
+double width_from_e(double e_mm, double length_mm, double layer_height, double filament_diameter);
+
+// Throws scaffold::Error if the program has no extrusion at all.
+LayerStack build_layers(const gcode::Program& program, const Settings& settings);
+
+}  // namespace scaffold::layers

@@ -1,0 +1,248 @@
+#include "layers/raster.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace scaffold::layers {
+
+BitGrid::BitGrid(double min_x, double min_y, double max_x, double max_y, double cell)
+    : ox_(min_x), oy_(min_y), cell_(cell) {
+    nx_ = std::max(1, static_cast<int>(std::ceil((max_x - min_x) / cell)));
+    ny_ = std::max(1, static_cast<int>(std::ceil((max_y - min_y) / cell)));
+    wpr_ = (nx_ + 63) / 64;
+    words_.assign(static_cast<std::size_t>(wpr_) * ny_, 0);
+}
+
+int BitGrid::col(double x) const { return static_cast<int>(std::floor((x - ox_) / cell_)); }
+int BitGrid::row(double y) const { return static_cast<int>(std::floor((y - oy_) / cell_)); }
+
+void BitGrid::clear() { std::fill(words_.begin(), words_.end(), 0); }
+
+void BitGrid::set_row_span(int j, int i0, int i1) {
+    if (j < 0 || j >= ny_) return;
+    i0 = std::max(i0, 0);
+    i1 = std::min(i1, nx_ - 1);
+    if (i0 > i1) return;
+    std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
+    int w0 = i0 >> 6, w1 = i1 >> 6;
+    std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63);
+    std::uint64_t hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
+    if (w0 == w1) {
+        row[w0] |= lo & hi;
+        return;
+    }
+    row[w0] |= lo;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
+    row[w1] |= hi;
+}
+
+namespace {
+
+struct Interval {
+    double lo = 1, hi = 0;
+    bool empty() const { return hi < lo; }
+    void unite(Interval o) {
+        if (o.empty()) return;
+        if (empty()) { *this = o; return; }
+        lo = std::min(lo, o.lo);
+        hi = std::max(hi, o.hi);
+    }
+};
+
+Interval disc_row(double x, double y, double r, double cy) {
+    double dy = cy - y;
+    if (std::abs(dy) > r) return {};
+    double h = std::sqrt(r * r - dy * dy);
+    return {x - h, x + h};
+}
+
+Interval sorted(double a, double b) { return a <= b ? Interval{a, b} : Interval{b, a}; }
+
+Interval intersect(Interval a, Interval b) { return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)}; }
+
+// Points (x, cy) within r of the segment form one interval (a capsule is convex):
+// the union of the two end discs and the band beside the segment.
+Interval capsule_row(double x0, double y0, double x1, double y1, double r, double cy) {
+    Interval out = disc_row(x0, y0, r, cy);
+    out.unite(disc_row(x1, y1, r, cy));
+    double dx = x1 - x0, dy = y1 - y0;
+    double len2 = dx * dx + dy * dy;
+    if (len2 <= 0) return out;
+    double len = std::sqrt(len2);
+    double ry = cy - y0;
+    constexpr double kInf = 1e300;
+    Interval perp{-kInf, kInf};  // |dx*ry - dy*(x-x0)| <= r*len
+    if (dy != 0) {
+        perp = sorted(x0 + (dx * ry - r * len) / dy, x0 + (dx * ry + r * len) / dy);
+    } else if (std::abs(ry) > r) {
+        return out;
+    }
+    Interval along{-kInf, kInf};  // 0 <= (x-x0)*dx + ry*dy <= len2
+    if (dx != 0) {
+        along = sorted(x0 + (-ry * dy) / dx, x0 + (len2 - ry * dy) / dx);
+    } else {
+        double t = ry * dy;
+        if (t < 0 || t > len2) return out;
+    }
+    out.unite(intersect(perp, along));
+    return out;
+}
+
+}  // namespace
+
+void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double width) {
+    // Never thinner than a cell, so a bead always leaves a connected trace.
+    double r = std::max(width * 0.5, cell_ * 0.5);
+    int j0 = std::max(0, row(std::min(y0, y1) - r));
+    int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
+    for (int j = j0; j <= j1; ++j) {
+        Interval span = capsule_row(x0, y0, x1, y1, r, cy(j));
+        if (span.empty()) continue;
+        int i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
+        int i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
+        set_row_span(j, i0, i1);
+    }
+}
+
+void BitGrid::draw_disc(double x, double y, double r) { draw_segment(x, y, x, y, 2 * r); }
+
+BitGrid& BitGrid::operator|=(const BitGrid& o) {
+    for (std::size_t k = 0; k < words_.size(); ++k) words_[k] |= o.words_[k];
+    return *this;
+}
+
+BitGrid& BitGrid::operator&=(const BitGrid& o) {
+    for (std::size_t k = 0; k < words_.size(); ++k) words_[k] &= o.words_[k];
+    return *this;
+}
+
+void BitGrid::subtract(const BitGrid& o) {
+    for (std::size_t k = 0; k < words_.size(); ++k) words_[k] &= ~o.words_[k];
+}
+
+std::size_t BitGrid::count() const {
+    std::size_t n = 0;
+    for (auto w : words_) n += static_cast<std::size_t>(std::popcount(w));
+    return n;
+}
+
+bool BitGrid::any() const {
+    return std::any_of(words_.begin(), words_.end(), [](std::uint64_t w) { return w != 0; });
+}
+
+namespace {
+
+// Row shifted towards higher i by s bits (s < 64 * words), into out (OR).
+void or_shift_up(const std::uint64_t* in, std::uint64_t* out, int words, int s) {
+    int ws = s >> 6, bs = s & 63;
+    for (int w = words - 1; w >= ws; --w) {
+        std::uint64_t v = in[w - ws] << bs;
+        if (bs && w - ws - 1 >= 0) v |= in[w - ws - 1] >> (64 - bs);
+        out[w] |= v;
+    }
+}
+
+void or_shift_down(const std::uint64_t* in, std::uint64_t* out, int words, int s) {
+    int ws = s >> 6, bs = s & 63;
+    for (int w = 0; w + ws < words; ++w) {
+        std::uint64_t v = in[w + ws] >> bs;
+        if (bs && w + ws + 1 < words) v |= in[w + ws + 1] << (64 - bs);
+        out[w] |= v;
+    }
+}
+
+// Horizontal dilation of one row by k cells, in O(log k) shifted ORs.
+void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, int words, int k) {
+    std::copy(in, in + words, out);
+    int e = 0;
+    while (e < k) {
+        int s = std::min(e + 1, k - e);
+        std::copy(out, out + words, tmp);
+        or_shift_up(tmp, out, words, s);
+        or_shift_down(tmp, out, words, s);
+        e += s;
+    }
+}
+
+}  // namespace
+
+BitGrid BitGrid::dilated(double r) const {
+    BitGrid out = *this;
+    double rc = r / cell_;
+    int R = static_cast<int>(std::floor(rc + 1e-9));
+    if (R <= 0) return out;
+    std::vector<int> half(R + 1);
+    for (int d = 0; d <= R; ++d) half[d] = static_cast<int>(std::floor(std::sqrt(std::max(0.0, rc * rc - d * d)) + 1e-9));
+    std::vector<std::uint64_t> row(wpr_), tmp(wpr_);
+    std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
+    for (int j = 0; j < ny_; ++j) {
+        const std::uint64_t* src = &words_[static_cast<std::size_t>(j) * wpr_];
+        if (std::all_of(src, src + wpr_, [](std::uint64_t w) { return w == 0; })) continue;
+        for (int d = -R; d <= R; ++d) {
+            int jj = j + d;
+            if (jj < 0 || jj >= ny_) continue;
+            dilate_row(src, row.data(), tmp.data(), wpr_, half[std::abs(d)]);
+            std::uint64_t* dst = &out.words_[static_cast<std::size_t>(jj) * wpr_];
+            for (int w = 0; w < wpr_; ++w) dst[w] |= row[w];
+            dst[wpr_ - 1] &= tail;
+        }
+    }
+    return out;
+}
+
+BitGrid BitGrid::filled() const {
+    // Flood the empty cells from the border; whatever the flood misses is
+    // enclosed by material and counts as filled.
+    BitGrid outside(ox_, oy_, ox_ + nx_ * cell_, oy_ + ny_ * cell_, cell_);
+    outside.nx_ = nx_;
+    outside.ny_ = ny_;
+    outside.wpr_ = wpr_;
+    outside.words_.assign(words_.size(), 0);
+    std::vector<std::pair<int, int>> stack;
+    auto seed = [&](int i, int j) {
+        if (!get(i, j) && !outside.get(i, j)) stack.emplace_back(i, j);
+    };
+    for (int i = 0; i < nx_; ++i) { seed(i, 0); seed(i, ny_ - 1); }
+    for (int j = 0; j < ny_; ++j) { seed(0, j); seed(nx_ - 1, j); }
+    while (!stack.empty()) {
+        auto [i, j] = stack.back();
+        stack.pop_back();
+        if (outside.get(i, j) || get(i, j)) continue;
+        int a = i, b = i;
+        while (a > 0 && !get(a - 1, j) && !outside.get(a - 1, j)) --a;
+        while (b + 1 < nx_ && !get(b + 1, j) && !outside.get(b + 1, j)) ++b;
+        outside.set_row_span(j, a, b);
+        for (int dj : {-1, 1}) {
+            int jj = j + dj;
+            if (jj < 0 || jj >= ny_) continue;
+            bool in_run = false;
+            for (int k = a; k <= b; ++k) {
+                bool free = !get(k, jj) && !outside.get(k, jj);
+                if (free && !in_run) stack.emplace_back(k, jj);
+                in_run = free;
+            }
+        }
+    }
+    BitGrid out = *this;
+    std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
+    for (int j = 0; j < ny_; ++j) {
+        for (int w = 0; w < wpr_; ++w) {
+            std::size_t k = static_cast<std::size_t>(j) * wpr_ + w;
+            out.words_[k] = ~outside.words_[k];
+        }
+        out.words_[static_cast<std::size_t>(j) * wpr_ + wpr_ - 1] &= tail;
+    }
+    return out;
+}
+
+BitGrid make_grid(const LayerStack& stack, double cell, double margin) {
+    const Bounds& b = stack.bounds;
+    return BitGrid(b.min_x - margin, b.min_y - margin, b.max_x + margin, b.max_y + margin, cell);
+}
+
+void draw_layer(BitGrid& grid, const Layer& layer) {
+    for (const Segment& s : layer.segments) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width);
+}
+
+}  // namespace scaffold::layers

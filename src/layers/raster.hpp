@@ -1,0 +1,72 @@
+#pragma once
+// A bit grid over the print's XY bounds; one bit per cell. Layers are drawn
+// into it as thick lines of their real width. Memory follows the print's
+// bounding box, not the bed.
+#include <cstdint>
+#include <vector>
+
+#include "layers/layer_stack.hpp"
+
+namespace scaffold::layers {
+
+class BitGrid {
+public:
+    BitGrid() = default;
+    // Covers [min_x, max_x] x [min_y, max_y] with square cells of `cell` mm.
+    BitGrid(double min_x, double min_y, double max_x, double max_y, double cell);
+
+    int width() const { return nx_; }
+    int height() const { return ny_; }
+    double cell() const { return cell_; }
+    double origin_x() const { return ox_; }
+    double origin_y() const { return oy_; }
+    double cell_area() const { return cell_ * cell_; }
+    // Centre of cell (i, j) in mm.
+    double cx(int i) const { return ox_ + (i + 0.5) * cell_; }
+    double cy(int j) const { return oy_ + (j + 0.5) * cell_; }
+    int col(double x) const;  // may be outside [0, width)
+    int row(double y) const;
+
+    bool get(int i, int j) const {
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return false;
+        return (words_[word_index(i, j)] >> (i & 63)) & 1u;
+    }
+    void set(int i, int j) {
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return;
+        words_[word_index(i, j)] |= std::uint64_t{1} << (i & 63);
+    }
+    void clear();
+    bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
+
+    // Sets every cell whose centre is within width/2 of the segment.
+    void draw_segment(double x0, double y0, double x1, double y1, double width);
+    // Sets every cell whose centre is within r of (x, y).
+    void draw_disc(double x, double y, double r);
+
+    BitGrid& operator|=(const BitGrid& o);
+    BitGrid& operator&=(const BitGrid& o);
+    void subtract(const BitGrid& o);  // this &= ~o
+    // Every cell within r (mm) of a set cell becomes set.
+    BitGrid dilated(double r) const;
+    // Cells enclosed by set cells (not reachable from the border) become set.
+    BitGrid filled() const;
+    std::size_t count() const;
+    bool any() const;
+
+    int words_per_row() const { return wpr_; }
+    const std::vector<std::uint64_t>& words() const { return words_; }
+
+private:
+    std::size_t word_index(int i, int j) const { return static_cast<std::size_t>(j) * wpr_ + (i >> 6); }
+    void set_row_span(int j, int i0, int i1);  // inclusive, clipped
+    double ox_ = 0, oy_ = 0, cell_ = 0.1;
+    int nx_ = 0, ny_ = 0, wpr_ = 0;
+    std::vector<std::uint64_t> words_;
+};
+
+// The grid for a stack: its bounds padded by `margin` mm on every side.
+BitGrid make_grid(const LayerStack& stack, double cell, double margin);
+// Draws every segment of the layer (optionally skipping some roles).
+void draw_layer(BitGrid& grid, const Layer& layer);
+
+}  // namespace scaffold::layers

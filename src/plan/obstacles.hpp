@@ -1,0 +1,36 @@
+#pragma once
+// What the planner must keep clear of: the model, per layer, as rasters.
+// Answers "is a disc free of the model (plus the gap) on layer L" and "where
+// is the model top under a column", so pillars and bridges never hit it.
+#include <vector>
+
+#include "gcode/settings.hpp"
+#include "layers/layer_stack.hpp"
+#include "layers/raster.hpp"
+
+namespace scaffold::plan {
+
+class Obstacles {
+public:
+    Obstacles(const layers::LayerStack& stack, const Settings& settings);
+
+    int layer_count() const { return static_cast<int>(z_.size()); }
+    double layer_z(int layer) const { return z_[layer]; }
+    double layer_height(int layer) const { return h_[layer]; }
+    // True when no model cell on `layer` lies within r of (x, y).
+    bool disc_clear(int layer, double x, double y, double r) const;
+    // True when the disc is clear on every layer whose top z is in (z_lo, z_hi].
+    bool column_clear(double x, double y, double r, double z_lo, double z_hi) const;
+    // Nearest layer below `layer` (by the stack's `below` chain) whose model
+    // touches the disc, or -1 when the column reaches the bed.
+    int model_below(int layer, double x, double y, double r) const;
+    // True when the segment (thick by r) is clear of the model on `layer`.
+    bool segment_clear(int layer, double x0, double y0, double x1, double y1, double r) const;
+
+private:
+    std::vector<double> z_, h_;
+    std::vector<int> below_;
+    std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
+};
+
+}  // namespace scaffold::plan

@@ -1,0 +1,39 @@
+#pragma once
+// The planned support structure, in plain geometry: columns (vertical
+// pillars and slanted connectors) and horizontal bridges. toolpath/ turns
+// it into per-layer extrusions; plan/ knows nothing about G-code.
+#include <vector>
+
+#include "overhang/overhangs.hpp"
+
+namespace scaffold::plan {
+
+enum class Base { Bed, Model, Bridge };
+enum class Top { Contact, Bridge };  // touches the model / ends under a bridge
+
+// A column whose centre moves linearly from bottom to top; vertical when
+// (x0,y0) == (x1,y1). Radius may grow for tall pillars (slenderness).
+struct Column {
+    double x0 = 0, y0 = 0, z0 = 0;  // bottom centre (z0 = 0 on the bed)
+    double x1 = 0, y1 = 0, z1 = 0;  // top centre (z1 = the supported z)
+    double radius = 1.0;
+    Base base = Base::Bed;
+    Top top = Top::Contact;
+    int point = -1;                 // index of the support point it holds, or -1
+};
+
+// A horizontal bar printed as a bridge at height z (its lowest layer's bottom).
+struct Bridge {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    double z = 0;
+    std::vector<int> points;        // support points it carries
+    double gain = 0, score = 0;
+};
+
+struct Scaffold {
+    std::vector<Column> columns;
+    std::vector<Bridge> bridges;
+    std::vector<int> dropped_points;  // could not be supported (e.g. --buildplate-only)
+};
+
+}  // namespace scaffold::plan

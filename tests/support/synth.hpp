@@ -1,0 +1,42 @@
+#pragma once
+// Writes small, valid PrusaSlicer-style G-code for tests: layers, typed
+// extrusions with correct absolute E, travels with retraction, and a config
+// block, so tests build their inputs instead of pasting G-code by hand.
+#include <string>
+#include <string_view>
+
+namespace scaffold::testing {
+
+class SynthGcode {
+public:
+    SynthGcode(double layer_height = 0.2, double width = 0.45, double filament_diameter = 1.75);
+
+    // Starts a layer whose top is at z (writes ;LAYER_CHANGE/;Z:/;HEIGHT: and G1 Z).
+    void layer(double z);
+    void type(std::string_view prusa_role);  // e.g. "External perimeter", "Bridge infill"
+    void width(double w);                    // writes ;WIDTH: and uses it for E
+    void travel(double x, double y);         // retracts first when longer than 2 mm
+    void extrude(double x, double y);        // straight bead from the current point
+    // A closed loop around a rectangle, then solid lines across it.
+    void rect_outline(double x0, double y0, double x1, double y1);
+    void filled_rect(double x0, double y0, double x1, double y1);
+    // A filled disc of radius r (concentric loops).
+    void filled_disc(double cx, double cy, double r);
+    void raw(std::string_view line);         // any extra line, verbatim
+
+    // Layers of a filled box from z_from (exclusive) to z_to (inclusive) are
+    // the caller's loop; this is the whole file with header and config.
+    std::string str() const;
+
+    double x() const { return x_; }
+    double y() const { return y_; }
+    double z() const { return z_; }
+
+private:
+    double e_per_mm() const;
+    std::string body_;
+    double h_, w_, fd_;
+    double x_ = 0, y_ = 0, z_ = 0, e_ = 0, prev_z_ = 0;
+};
+
+}  // namespace scaffold::testing
