@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace scaffold {
 
@@ -18,9 +19,15 @@ public:
 
 private:
     static std::string format(const std::string& file, std::size_t line, const std::string& message) {
-        std::string out = file.empty() ? std::string("<input>") : file;
-        if (line > 0) out += ":" + std::to_string(line);
-        return out + ": " + message;
+        std::string out;
+        out.append(file.empty() ? std::string_view("<input>") : std::string_view(file));
+        if (line > 0) {
+            out.push_back(':');
+            out.append(std::to_string(line));
+        }
+        out.append(": ");
+        out.append(message);
+        return out;
     }
     std::string file_;
     std::size_t line_;

@@ -1,0 +1,106 @@
+#include "gcode/lexer.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace scaffold::gcode {
+
+namespace {
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; }
+bool is_letter(char c) { c = upper(c); return c >= 'A' && c <= 'Z'; }
+
+// M-codes whose argument is text, not words.
+bool free_text(char letter, int code) {
+    if (letter != 'M') return false;
+    switch (code) {
+        case 23: case 28: case 30: case 32: case 117: case 118: case 928: return true;
+        default: return false;
+    }
+}
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+    while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+// Reads a number at p (allowing a leading '+'); returns end or nullptr.
+const char* read_number(const char* p, const char* end, double& value) {
+    if (p < end && *p == '+') ++p;
+    auto [q, ec] = std::from_chars(p, end, value);
+    if (ec != std::errc()) return nullptr;
+    return q;
+}
+
+}  // namespace
+
+const char* lex(std::string_view line, Command& out) {
+    out.letter = 0;
+    out.code = -1;
+    out.subcode = -1;
+    out.word_count = 0;
+    out.comment = {};
+    std::size_t semi = line.find(';');
+    std::string_view code = line.substr(0, semi);
+    if (semi != std::string_view::npos) out.comment = trim(line.substr(semi + 1));
+    // Checksums: "N123 G1 X1*57" — the '*' and what follows are not words.
+    if (std::size_t star = code.find('*'); star != std::string_view::npos) code = code.substr(0, star);
+    code = trim(code);
+    out.code_text = code;
+    const char* p = code.data();
+    const char* end = p + code.size();
+    auto skip = [&] { while (p < end && is_space(*p)) ++p; };
+    skip();
+    if (p < end && upper(*p) == 'N') {  // line number
+        ++p;
+        double n;
+        const char* q = read_number(p, end, n);
+        if (!q) return "malformed line number";
+        p = q;
+        skip();
+    }
+    if (p >= end) return "";
+    if (*p == '(') return "";  // parenthesised comment line
+    char c = upper(*p);
+    if (c != 'G' && c != 'M' && c != 'T') return "";  // other firmware words pass through
+    ++p;
+    double v;
+    const char* q = read_number(p, end, v);
+    if (!q) {
+        if (c == 'T') return "";  // "T?" / "Tx" host tool macros
+        return "command without a number";
+    }
+    if (!std::isfinite(v) || v < 0 || v > 100000) return "command number out of range";
+    out.letter = c;
+    out.code = static_cast<int>(v);
+    double frac = v - out.code;
+    if (frac > 1e-9) out.subcode = static_cast<int>(std::lround(frac * 10));
+    p = q;
+    if (free_text(c, out.code)) return "";
+    while (true) {
+        skip();
+        if (p >= end) break;
+        if (*p == '(') {  // inline (comment)
+            while (p < end && *p != ')') ++p;
+            if (p < end) ++p;
+            continue;
+        }
+        if (!is_letter(*p)) return "unexpected character in parameters";
+        char letter = upper(*p++);
+        skip();
+        double value = 0;
+        if (p < end && !is_letter(*p)) {
+            const char* r = read_number(p, end, value);
+            if (!r) return "malformed number";
+            p = r;
+            if (p < end && !is_space(*p) && !is_letter(*p)) return "malformed number";
+            if (!std::isfinite(value)) return "number is not finite";
+        }
+        if (out.word_count < static_cast<int>(out.words.size())) out.words[out.word_count++] = {letter, value};
+    }
+    return "";
+}
+
+}  // namespace scaffold::gcode

@@ -1,0 +1,74 @@
+#include "gcode/role.hpp"
+
+#include <array>
+#include <cctype>
+#include <utility>
+
+namespace scaffold::gcode {
+
+namespace {
+
+bool iequal(std::string_view a, std::string_view b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
+    return true;
+}
+
+// Names used by PrusaSlicer/SuperSlicer, OrcaSlicer/Bambu, Cura and Slic3r.
+constexpr std::array<std::pair<std::string_view, Role>, 44> kNames{{
+    {"External perimeter", Role::ExternalPerimeter}, {"Perimeter", Role::Perimeter},
+    {"Overhang perimeter", Role::OverhangPerimeter}, {"Internal infill", Role::InternalInfill},
+    {"Solid infill", Role::SolidInfill}, {"Top solid infill", Role::TopSolidInfill},
+    {"Bridge infill", Role::BridgeInfill}, {"Internal bridge infill", Role::BridgeInfill},
+    {"Gap fill", Role::SolidInfill}, {"Skirt", Role::Skirt}, {"Skirt/Brim", Role::Skirt},
+    {"Brim", Role::Skirt}, {"Support material", Role::Support},
+    {"Support material interface", Role::SupportInterface}, {"Wipe tower", Role::WipeTower},
+    {"Custom", Role::Custom}, {"Ironing", Role::TopSolidInfill},
+    // OrcaSlicer / Bambu Studio
+    {"Outer wall", Role::ExternalPerimeter}, {"Inner wall", Role::Perimeter},
+    {"Overhang wall", Role::OverhangPerimeter}, {"Sparse infill", Role::InternalInfill},
+    {"Internal solid infill", Role::SolidInfill}, {"Top surface", Role::TopSolidInfill},
+    {"Bottom surface", Role::SolidInfill}, {"Bridge", Role::BridgeInfill},
+    {"Support", Role::Support}, {"Support interface", Role::SupportInterface},
+    {"Support transition", Role::Support}, {"Prime tower", Role::WipeTower},
+    // Cura
+    {"WALL-OUTER", Role::ExternalPerimeter}, {"WALL-INNER", Role::Perimeter},
+    {"FILL", Role::InternalInfill}, {"SKIN", Role::SolidInfill}, {"SKIRT", Role::Skirt},
+    {"SUPPORT", Role::Support}, {"SUPPORT-INTERFACE", Role::SupportInterface},
+    {"PRIME-TOWER", Role::WipeTower}, {"PRIME_TOWER", Role::WipeTower},
+    // Slic3r 1.x per-line comments
+    {"perimeter (bridge)", Role::OverhangPerimeter}, {"infill (bridge)", Role::BridgeInfill},
+    {"infill", Role::InternalInfill}, {"support material interface", Role::SupportInterface},
+    {"move to first perimeter point", Role::Unknown}, {"skirt", Role::Skirt},
+}};
+
+}  // namespace
+
+Role role_from_name(std::string_view name) {
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.remove_suffix(1);
+    for (const auto& [n, r] : kNames)
+        if (iequal(n, name)) return r;
+    return Role::Unknown;
+}
+
+std::string_view role_name(Role role) {
+    switch (role) {
+        case Role::ExternalPerimeter: return "External perimeter";
+        case Role::Perimeter: return "Perimeter";
+        case Role::OverhangPerimeter: return "Overhang perimeter";
+        case Role::InternalInfill: return "Internal infill";
+        case Role::SolidInfill: return "Solid infill";
+        case Role::TopSolidInfill: return "Top solid infill";
+        case Role::BridgeInfill: return "Bridge infill";
+        case Role::Skirt: return "Skirt/Brim";
+        case Role::Support: return "Support material";
+        case Role::SupportInterface: return "Support material interface";
+        case Role::WipeTower: return "Wipe tower";
+        case Role::Custom: return "Custom";
+        case Role::Unknown: break;
+    }
+    return "Unknown";
+}
+
+}  // namespace scaffold::gcode

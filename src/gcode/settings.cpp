@@ -1,0 +1,216 @@
+#include "gcode/settings.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <initializer_list>
+#include <vector>
+
+#include "gcode/error.hpp"
+
+extern char** environ;
+
+namespace scaffold {
+
+namespace {
+
+// Looks a setting up under the names the dialects use for it, last source
+// winning: file config < environment < command line.
+class Lookup {
+public:
+    Lookup(const gcode::Program& p, const SettingMap& env, const SettingMap& cli) : p_(p), env_(env), cli_(cli) {}
+
+    const std::string* find(std::initializer_list<const char*> keys, std::string* origin = nullptr) const {
+        for (const SettingMap* m : {&cli_, &env_, &p_.config}) {
+            for (const char* k : keys) {
+                auto it = m->find(k);
+                if (it != m->end()) {
+                    if (origin) *origin = m == &cli_ ? "command line" : (m == &env_ ? "environment" : "file");
+                    return &it->second;
+                }
+            }
+        }
+        return nullptr;
+    }
+
+    // First number of a value ("0.4,0.4" -> 0.4; "60%" -> 60 with percent set).
+    bool number(std::initializer_list<const char*> keys, double& out, bool* percent = nullptr) const {
+        std::string origin;
+        const std::string* v = find(keys, &origin);
+        if (!v) return false;
+        std::string_view s(*v);
+        while (!s.empty() && (s.front() == ' ' || s.front() == '"' || s.front() == '[')) s.remove_prefix(1);
+        if (s.empty() || s == "nil") return false;
+        double d = 0;
+        const char* b = s.data();
+        if (*b == '+') ++b;
+        auto [end, ec] = std::from_chars(b, s.data() + s.size(), d);
+        if (ec != std::errc() || !std::isfinite(d))
+            throw Error(p_.path, 0, "setting '" + std::string(*keys.begin()) + "' from the " + origin +
+                                        " is not a number: '" + *v + "'");
+        if (percent) *percent = end < s.data() + s.size() && *end == '%';
+        out = d;
+        return true;
+    }
+
+    bool flag(std::initializer_list<const char*> keys, bool& out) const {
+        const std::string* v = find(keys);
+        if (!v) return false;
+        std::string s = *v;
+        std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+        out = s == "1" || s == "true" || s == "yes" || s == "on";
+        return true;
+    }
+
+    const std::string* text(std::initializer_list<const char*> keys) const { return find(keys); }
+
+private:
+    const gcode::Program& p_;
+    const SettingMap& env_;
+    const SettingMap& cli_;
+};
+
+void positive(const gcode::Program& p, const char* name, double v) {
+    if (!(v > 0)) throw Error(p.path, 0, std::string("setting '") + name + "' must be positive");
+}
+
+// "0x0,250x0,250x210,0x210" -> bounds.
+void bed_from_shape(const std::string& shape, Settings& s) {
+    double minx = 1e9, miny = 1e9, maxx = -1e9, maxy = -1e9;
+    std::size_t pos = 0;
+    while (pos < shape.size()) {
+        std::size_t comma = shape.find(',', pos);
+        std::string pt = shape.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+        std::size_t x = pt.find('x');
+        if (x != std::string::npos) {
+            double a = std::atof(pt.c_str()), b = std::atof(pt.c_str() + x + 1);
+            minx = std::min(minx, a); maxx = std::max(maxx, a);
+            miny = std::min(miny, b); maxy = std::max(maxy, b);
+        }
+        if (comma == std::string::npos) break;
+        pos = comma + 1;
+    }
+    if (maxx > minx && maxy > miny) {
+        s.bed_min_x = minx; s.bed_min_y = miny; s.bed_max_x = maxx; s.bed_max_y = maxy;
+    }
+}
+
+// The most common retraction in the file, for dialects that do not say.
+double observed_retraction(const gcode::Program& p) {
+    std::vector<float> r;
+    for (const auto& m : p.moves)
+        if (m.kind == gcode::MoveKind::Retract && m.e < 0) r.push_back(-m.e);
+    if (r.empty()) return 0;
+    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+    return r[r.size() / 2];
+}
+
+}  // namespace
+
+SettingMap settings_from_environment() {
+    SettingMap out;
+    for (char** e = environ; e && *e; ++e) {
+        std::string_view kv(*e);
+        if (kv.substr(0, 7) != "SLIC3R_") continue;
+        std::size_t eq = kv.find('=');
+        if (eq == std::string_view::npos) continue;
+        std::string key(kv.substr(7, eq - 7));
+        std::transform(key.begin(), key.end(), key.begin(), [](unsigned char c) { return std::tolower(c); });
+        out[key] = std::string(kv.substr(eq + 1));
+    }
+    return out;
+}
+
+Settings build_settings(const gcode::Program& program, const SettingMap& environment, const SettingMap& overrides) {
+    Settings s;
+    Lookup l(program, environment, overrides);
+    l.number({"nozzle_diameter", "machine_nozzle_size"}, s.nozzle_diameter);
+    l.number({"filament_diameter", "material_diameter"}, s.filament_diameter);
+    l.number({"layer_height"}, s.layer_height);
+    bool pct = false;
+    double first = s.layer_height;
+    if (l.number({"first_layer_height", "initial_layer_print_height", "layer_height_0"}, first, &pct))
+        s.first_layer_height = pct ? s.layer_height * first / 100 : first;
+    else
+        s.first_layer_height = s.layer_height;
+    l.flag({"use_relative_e_distances", "relative_extrusion"}, s.relative_e);
+    l.flag({"use_firmware_retraction", "machine_firmware_retract"}, s.firmware_retraction);
+    if (!l.number({"retract_length", "retraction_length", "retraction_amount"}, s.retract_length)) {
+        double seen = observed_retraction(program);
+        if (seen > 0) s.retract_length = seen;
+    }
+    l.number({"retract_speed", "retraction_speed", "retraction_retract_speed"}, s.retract_speed_mm_s);
+    l.number({"deretract_speed", "retraction_prime_speed"}, s.deretract_speed_mm_s);
+    bool hop = true;
+    if (l.flag({"retraction_hop_enabled"}, hop) && !hop) s.retract_lift = 0;
+    else l.number({"retract_lift", "z_hop", "retraction_hop"}, s.retract_lift);
+    l.number({"retract_before_travel", "retraction_minimum_travel", "retraction_min_travel"}, s.retract_before_travel);
+    l.number({"travel_speed", "speed_travel"}, s.travel_speed_mm_s);
+    l.number({"support_material_speed", "support_speed", "speed_support"}, s.support_speed_mm_s);
+    l.number({"bridge_speed", "speed_bridge", "bridge_skin_speed"}, s.bridge_speed_mm_s);
+    double fl = 0;
+    if (l.number({"first_layer_speed", "initial_layer_speed", "speed_layer_0"}, fl, &pct))
+        s.first_layer_speed_mm_s = pct ? s.support_speed_mm_s * fl / 100 : fl;
+    l.number({"bridge_fan_speed", "bridge_fan_speed_1", "overhang_fan_speed", "bridge_fan_speed_2"}, s.bridge_fan_percent);
+    if (const std::string* shape = l.text({"bed_shape", "printable_area"})) bed_from_shape(*shape, s);
+    double w = 0, d = 0;
+    if (l.number({"machine_width"}, w) && l.number({"machine_depth"}, d)) {
+        s.bed_min_x = 0; s.bed_min_y = 0; s.bed_max_x = w; s.bed_max_y = d;
+    }
+    l.number({"temperature", "nozzle_temperature", "material_print_temperature"}, s.temperature);
+    l.number({"first_layer_temperature", "nozzle_temperature_initial_layer", "material_print_temperature_layer_0"},
+             s.first_layer_temperature);
+    l.number({"bed_temperature", "hot_plate_temp", "material_bed_temperature"}, s.bed_temperature);
+    l.flag({"spiral_vase", "spiral_mode", "magic_spiralize"}, s.spiral_vase);
+    if (!l.flag({"complete_objects"}, s.sequential_printing)) {
+        if (const std::string* seq = l.text({"print_sequence"}))
+            s.sequential_printing = *seq == "by object" || *seq == "one_at_a_time";
+    }
+    // Slic3r-family files may list a bridge limit; otherwise the issue default.
+    l.number({"max_bridge_length", "bridge_max_length"}, s.slicer_max_bridge);
+    s.max_bridge = s.slicer_max_bridge;
+
+    // Options of scaffold itself (command line only, keyed "--name" so they never meet a slicer key).
+    l.number({"--resolution"}, s.resolution);
+    l.number({"--overhang-angle"}, s.overhang_angle_deg);
+    l.number({"--max-bridge"}, s.max_bridge);
+    l.number({"--min-overhang-area"}, s.min_overhang_area);
+    l.number({"--point-spacing"}, s.point_spacing);
+    l.number({"--point-radius"}, s.point_radius);
+    l.number({"--xy-gap"}, s.xy_gap);
+    double tgl = s.top_gap_layers;
+    if (l.number({"--top-gap-layers"}, tgl)) s.top_gap_layers = static_cast<int>(tgl);
+    l.number({"--tip-length"}, s.tip_length);
+    l.number({"--slenderness"}, s.slenderness);
+    l.number({"--pillar-radius"}, s.pillar_radius);
+    l.number({"--support-width"}, s.support_width);
+    l.flag({"--buildplate-only"}, s.buildplate_only);
+    l.number({"--bridge-min-length"}, s.bridge_min_length);
+    l.number({"--bridge-max-length"}, s.bridge_max_length);
+    l.number({"--bridge-min-drop"}, s.bridge_min_drop);
+    l.number({"--bridge-max-offset"}, s.bridge_max_offset);
+    l.number({"--bridge-height-step"}, s.bridge_height_step);
+    if (const std::string* m = l.text({"--method"})) {
+        if (*m == "scaffold") s.method = Method::Scaffold;
+        else if (*m == "pillars") s.method = Method::Pillars;
+        else if (*m == "none") s.method = Method::None;
+        else throw Error("--method must be scaffold, pillars or none (got '" + *m + "')");
+    }
+
+    positive(program, "nozzle_diameter", s.nozzle_diameter);
+    positive(program, "filament_diameter", s.filament_diameter);
+    positive(program, "layer_height", s.layer_height);
+    positive(program, "first_layer_height", s.first_layer_height);
+    positive(program, "resolution", s.resolution);
+    if (s.resolution > 2) throw Error("--resolution must be at most 2 mm");
+    if (!(s.overhang_angle_deg > 0 && s.overhang_angle_deg < 89)) throw Error("--overhang-angle must be between 0 and 89 degrees");
+    positive(program, "point_spacing", s.point_spacing);
+    positive(program, "point_radius", s.point_radius);
+    if (s.xy_gap < 0) throw Error("--xy-gap must not be negative");
+    s.source = gcode::dialect_name(program.dialect);
+    return s;
+}
+
+}  // namespace scaffold

@@ -1,0 +1,109 @@
+#include "gcode/writer.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+#include "gcode/error.hpp"
+
+namespace scaffold::gcode {
+
+namespace {
+
+bool uses_crlf(const Program& p) {
+    return !p.lines.empty() && p.lines[0].offset + p.lines[0].length < p.text.size() &&
+           p.text[p.lines[0].offset + p.lines[0].length] == '\r';
+}
+
+bool put(std::FILE* out, std::string_view s) { return s.empty() || std::fwrite(s.data(), 1, s.size(), out) == s.size(); }
+
+bool put_block(std::FILE* out, const std::string& text, bool crlf) {
+    if (!crlf) return put(out, text);
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) return put(out, std::string_view(text).substr(pos));
+        if (!put(out, std::string_view(text).substr(pos, nl - pos)) || !put(out, "\r\n")) return false;
+        pos = nl + 1;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
+    std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
+        return a.line != b.line ? a.line < b.line : (!a.replace && b.replace);
+    });
+    bool crlf = uses_crlf(p);
+    std::string_view text(p.text);
+    std::uint64_t copied = 0;  // bytes of the input already written
+    for (const Edit& e : edits) {
+        std::uint32_t line = std::min<std::uint32_t>(e.line, static_cast<std::uint32_t>(p.lines.size()));
+        std::uint64_t at = line < p.lines.size() ? p.lines[line].offset : text.size();
+        if (at > copied) {
+            if (!put(out, text.substr(copied, at - copied))) return false;
+            copied = at;
+        }
+        // A last line without a newline gets one before anything follows it.
+        if (at == text.size() && !text.empty() && text.back() != '\n' && copied == text.size()) {
+            if (!put(out, crlf ? "\r\n" : "\n")) return false;
+            copied = text.size() + 1;  // mark as terminated
+        }
+        if (!put_block(out, e.text, crlf)) return false;
+        if (e.replace && line < p.lines.size()) {
+            // Skip the replaced line's bytes but keep its line ending.
+            copied = p.lines[line].offset + p.lines[line].length;
+        }
+    }
+    if (copied < text.size() && !put(out, text.substr(copied))) return false;
+    return true;
+}
+
+void write_output(const std::string& path, const Program& program, std::vector<Edit> edits) {
+    if (path == "-") {
+        if (!write_edited(stdout, program, std::move(edits)) || std::fflush(stdout) != 0)
+            throw Error("<stdout>", 0, std::string("write failed: ") + std::strerror(errno));
+        return;
+    }
+    std::string dir = ".", base = path;
+    if (std::size_t slash = path.rfind('/'); slash != std::string::npos) {
+        dir = slash == 0 ? "/" : path.substr(0, slash);
+        base = path.substr(slash + 1);
+    }
+    std::string tmp = dir + "/." + base + ".scaffold-" + std::to_string(::getpid()) + ".tmp";
+    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd < 0) throw Error(path, 0, std::string("cannot create the output file: ") + std::strerror(errno));
+    struct stat st{};
+    if (::stat(path.c_str(), &st) == 0) (void)::fchmod(fd, st.st_mode & 07777);  // keep the original's mode
+    std::FILE* out = ::fdopen(fd, "wb");
+    if (!out) {
+        int err = errno;
+        ::close(fd);
+        ::unlink(tmp.c_str());
+        throw Error(path, 0, std::string("cannot write the output file: ") + std::strerror(err));
+    }
+    // A test hook to prove that a failed write leaves the target untouched.
+    bool fail = std::getenv("SCAFFOLD_TEST_FAIL_WRITE") != nullptr;
+    bool ok = !fail && write_edited(out, program, std::move(edits));
+    ok = ok && std::fflush(out) == 0 && ::fsync(fd) == 0;
+    int err = fail ? EIO : errno;
+    if (std::fclose(out) != 0 && ok) { ok = false; err = errno; }
+    if (!ok) {
+        ::unlink(tmp.c_str());
+        throw Error(path, 0, std::string("writing the output failed (") + std::strerror(err) +
+                                 "); the original file is unchanged");
+    }
+    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+        err = errno;
+        ::unlink(tmp.c_str());
+        throw Error(path, 0, std::string("cannot replace the output file: ") + std::strerror(err));
+    }
+}
+
+}  // namespace scaffold::gcode

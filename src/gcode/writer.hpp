@@ -1,0 +1,31 @@
+#pragma once
+// Step 7: the output. The input's bytes are copied unchanged except where an
+// Edit inserts a block before a line or replaces a line. Files are written
+// to a temporary file beside the target, synced, then renamed over it, so a
+// failure never leaves a half-written output.
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "gcode/program.hpp"
+
+namespace scaffold::gcode {
+
+struct Edit {
+    std::uint32_t line = 0;  // 0-based; lines.size() means "at the end"
+    bool replace = false;    // replace that line instead of inserting before it
+    // Insert: '\n'-terminated lines (converted to CRLF if the file uses it).
+    // Replace: the line's new content, without a line ending (the original
+    // ending is kept).
+    std::string text;
+};
+
+// Streams the program with edits applied (edits sorted by line, stable).
+// Returns false if the stream reported an error.
+bool write_edited(std::FILE* out, const Program& program, std::vector<Edit> edits);
+
+// Writes to `path` atomically ("-" writes to stdout). Throws scaffold::Error.
+void write_output(const std::string& path, const Program& program, std::vector<Edit> edits);
+
+}  // namespace scaffold::gcode

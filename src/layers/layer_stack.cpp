@@ -1,0 +1,111 @@
+#include "layers/layer_stack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "gcode/error.hpp"
+
+namespace scaffold::layers {
+
+double width_from_e(double e_mm, double length_mm, double layer_height, double filament_diameter) {
+    if (length_mm <= 0 || layer_height <= 0) return 0;
+    double area = e_mm * std::numbers::pi * filament_diameter * filament_diameter / 4 / length_mm;
+    // area = (w - h) * h + pi * h^2 / 4  (rectangle with semicircular sides)
+    return area / layer_height + layer_height * (1 - std::numbers::pi / 4);
+}
+
+namespace {
+
+constexpr double kZEps = 1e-4;
+
+bool extrudes(const gcode::Move& m) { return m.kind == gcode::MoveKind::Extrude; }
+
+}  // namespace
+
+LayerStack build_layers(const gcode::Program& program, const Settings& settings) {
+    LayerStack stack;
+    const auto& moves = program.moves;
+    std::size_t hint = 0;               // next layer hint to consider
+    std::uint32_t last_z_change = 0;    // line of the latest move that changed Z
+    bool have_z_change = false;
+    std::uint32_t prev_last_extrusion = 0;
+    bool any = false;
+
+    for (std::size_t k = 0; k < moves.size(); ++k) {
+        const gcode::Move& m = moves[k];
+        if (m.z1 != m.z0) { last_z_change = m.line; have_z_change = true; }
+        if (!extrudes(m)) continue;
+        double z = m.z1;
+        if (!any || std::abs(z - stack.layers.back().z) > kZEps) {
+            Layer layer;
+            layer.z = z;
+            // Boundary: the slicer's layer comment if one lies between the two
+            // layers' extrusions, else the Z move that reached this height.
+            std::uint32_t boundary = m.line;
+            if (have_z_change && (!any || last_z_change > prev_last_extrusion)) boundary = std::min(boundary, last_z_change);
+            while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= m.line) {
+                if (!any || program.layer_hints[hint].line > prev_last_extrusion)
+                    boundary = std::min(boundary, program.layer_hints[hint].line);
+                ++hint;
+            }
+            if (!any) boundary = std::min(boundary, m.line);
+            layer.first_line = boundary;
+            if (any) stack.layers.back().end_line = boundary;
+            stack.layers.push_back(std::move(layer));
+            any = true;
+        }
+        Layer& layer = stack.layers.back();
+        Segment s;
+        s.x0 = m.x0; s.y0 = m.y0; s.x1 = m.x1; s.y1 = m.y1;
+        s.width = m.width;  // filled in below where the slicer gave none
+        s.role = m.role;
+        s.move = static_cast<std::uint32_t>(k);
+        layer.segments.push_back(s);
+        layer.last_extrusion_line = m.line;
+        prev_last_extrusion = m.line;
+    }
+    if (!any) throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
+    stack.layers.back().end_line = static_cast<std::uint32_t>(program.lines.size());
+
+    // Heights and the layer beneath: by z, ignoring anything printed before
+    // the lowest layer (a purge line at the start rests on the bed).
+    std::size_t lowest = 0;
+    for (std::size_t i = 1; i < stack.layers.size(); ++i)
+        if (stack.layers[i].z < stack.layers[lowest].z - kZEps) lowest = i;
+    double min_z = stack.layers[lowest].z;
+    for (std::size_t i = 0; i < stack.layers.size(); ++i) {
+        Layer& L = stack.layers[i];
+        L.on_bed = i <= lowest || L.z <= min_z + kZEps;
+        L.below = -1;
+        if (!L.on_bed) {
+            for (std::size_t j = i; j-- > lowest;) {
+                if (stack.layers[j].z < L.z - kZEps) { L.below = static_cast<int>(j); break; }
+            }
+        }
+        L.height = L.below >= 0 ? L.z - stack.layers[L.below].z : L.z;
+        if (L.height <= kZEps) L.height = settings.layer_height;
+        for (Segment& s : L.segments) {
+            if (s.width > 0) continue;
+            const gcode::Move& m = moves[s.move];
+            double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
+            double w = width_from_e(m.e, len, L.height, settings.filament_diameter);
+            s.width = static_cast<float>(std::clamp(w, 0.05 * settings.nozzle_diameter, 4.0 * settings.nozzle_diameter));
+        }
+    }
+    Bounds& b = stack.bounds;
+    b.min_x = b.min_y = 1e300;
+    b.max_x = b.max_y = -1e300;
+    for (std::size_t i = lowest; i < stack.layers.size(); ++i) {
+        for (const Segment& s : stack.layers[i].segments) {
+            double r = s.width / 2;
+            b.min_x = std::min({b.min_x, s.x0 - r, s.x1 - r});
+            b.min_y = std::min({b.min_y, s.y0 - r, s.y1 - r});
+            b.max_x = std::max({b.max_x, s.x0 + r, s.x1 + r});
+            b.max_y = std::max({b.max_y, s.y0 + r, s.y1 + r});
+        }
+    }
+    return stack;
+}
+
+}  // namespace scaffold::layers
