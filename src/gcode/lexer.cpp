@@ -91,7 +91,10 @@ const char* lex(std::string_view line, Command& out) {
         char letter = upper(*p++);
         skip();
         double value = 0;
-        if (p < end && !is_letter(*p)) {
+        if (p >= end || is_letter(*p)) {
+            // Bare axis letters are fine for homing ("G28 X") but not for moves.
+            if (c == 'G' && (out.code <= 3 || out.code == 92)) return "parameter without a number";
+        } else {
             const char* r = read_number(p, end, value);
             if (!r) return "malformed number";
             p = r;

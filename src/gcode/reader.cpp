@@ -107,7 +107,6 @@ struct Parser {
             p.layer_hints.back().z = parse_double(c.substr(c.find(':') + 1), -1);
         else if ((starts_with(c, "HEIGHT:") || starts_with(c, "LAYER_HEIGHT:")) && !p.layer_hints.empty())
             p.layer_hints.back().height = parse_double(c.substr(c.find(':') + 1), -1);
-        else if (starts_with(c, "SETTING_3 ")) cura_settings += c.substr(10);
         else if (starts_with(c, "FLAVOR:")) {
             if (p.dialect == Dialect::Unknown) p.dialect = Dialect::Cura;
             p.config["machine_gcode_flavor"] = std::string(trim(c.substr(7)));
@@ -126,7 +125,9 @@ struct Parser {
         if (*err) throw Error(p.path, i + 1, std::string(err) + ": '" + std::string(trim(text.substr(0, 80))) + "'");
         if (cmd.letter == 0) {
             std::string_view t = trim(text);
-            if (!t.empty() && t.front() == ';') comment_line(i, trim(t.substr(1)));
+            // Cura splits its settings JSON at fixed widths: keep every byte.
+            if (starts_with(t, ";SETTING_3 ")) cura_settings += text.substr(text.find(";SETTING_3 ") + 11);
+            else if (!t.empty() && t.front() == ';') comment_line(i, trim(t.substr(1)));
             return;
         }
         if (cmd.letter == 'G' && cmd.code >= 10 && cmd.code <= 11) p.saw_firmware_retraction = true;

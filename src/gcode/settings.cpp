@@ -84,8 +84,10 @@ void bed_from_shape(const std::string& shape, Settings& s) {
         std::size_t comma = shape.find(',', pos);
         std::string pt = shape.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
         std::size_t x = pt.find('x');
-        if (x != std::string::npos) {
-            double a = std::atof(pt.c_str()), b = std::atof(pt.c_str() + x + 1);
+        double a = 0, b = 0;
+        if (x != std::string::npos &&
+            std::from_chars(pt.data(), pt.data() + x, a).ec == std::errc() &&
+            std::from_chars(pt.data() + x + 1, pt.data() + pt.size(), b).ec == std::errc()) {
             minx = std::min(minx, a); maxx = std::max(maxx, a);
             miny = std::min(miny, b); maxy = std::max(maxy, b);
         }
