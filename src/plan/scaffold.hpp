@@ -20,6 +20,8 @@ struct Column {
     Base base = Base::Bed;
     Top top = Top::Contact;
     int point = -1;                 // index of the support point it holds, or -1
+    double foot_radius = 0;         // flared foot on the bed (0 = none)
+    double raft_size = 0;           // square raft under it on the first layer (0 = none)
 };
 
 // A horizontal bar printed as a bridge at height z (its lowest layer's bottom).

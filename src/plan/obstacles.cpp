@@ -1,0 +1,73 @@
+#include "plan/obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace scaffold::plan {
+
+Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings) {
+    // The grid reaches past the print so pillars beside it can be tested too.
+    layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
+    z_.reserve(stack.layers.size());
+    for (const layers::Layer& layer : stack.layers) {
+        z_.push_back(layer.z);
+        h_.push_back(layer.height);
+        below_.push_back(layer.below);
+        layers::BitGrid g = proto;
+        layers::draw_layer(g, layer);
+        model_.push_back(std::move(g));
+    }
+}
+
+namespace {
+
+// Calls f(i, j) for every cell whose centre is within r of (x, y); stops
+// early when f returns true. Returns whether it stopped.
+template <class F>
+bool any_cell_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f) {
+    int j0 = g.row(y - r), j1 = g.row(y + r);
+    for (int j = j0; j <= j1; ++j) {
+        double dy = g.cy(j) - y;
+        if (std::abs(dy) > r) continue;
+        double hw = std::sqrt(r * r - dy * dy);
+        int i0 = static_cast<int>(std::ceil((x - hw - g.origin_x()) / g.cell() - 0.5));
+        int i1 = static_cast<int>(std::floor((x + hw - g.origin_x()) / g.cell() - 0.5));
+        for (int i = i0; i <= i1; ++i)
+            if (f(i, j)) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
+    if (layer < 0 || layer >= layer_count()) return true;
+    const layers::BitGrid& g = model_[layer];
+    return !any_cell_in_disc(g, x, y, r, [&](int i, int j) { return g.get(i, j); });
+}
+
+bool Obstacles::column_clear(double x, double y, double r, double z_lo, double z_hi) const {
+    for (int l = 0; l < layer_count(); ++l)
+        if (z_[l] > z_lo + 1e-6 && z_[l] <= z_hi + 1e-6 && !disc_clear(l, x, y, r)) return false;
+    return true;
+}
+
+int Obstacles::model_below(int layer, double x, double y, double r) const {
+    for (int l = layer >= 0 && layer < layer_count() ? below_[layer] : -1; l >= 0; l = below_[l])
+        if (!disc_clear(l, x, y, r)) return l;
+    return -1;
+}
+
+bool Obstacles::segment_clear(int layer, double x0, double y0, double x1, double y1, double r) const {
+    if (layer < 0 || layer >= layer_count()) return true;
+    double len = std::hypot(x1 - x0, y1 - y0);
+    const layers::BitGrid& g = model_[layer];
+    int steps = std::max(1, static_cast<int>(std::ceil(len / (g.cell() * 2))));
+    for (int k = 0; k <= steps; ++k) {
+        double t = static_cast<double>(k) / steps;
+        if (!disc_clear(layer, x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, r)) return false;
+    }
+    return true;
+}
+
+}  // namespace scaffold::plan

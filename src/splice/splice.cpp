@@ -1,0 +1,225 @@
+#include "splice/splice.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "gcode/lexer.hpp"
+#include "gcode/machine.hpp"
+
+namespace scaffold::splice {
+
+double filament_for(double length, double width, double height, double filament_diameter) {
+    double area = (width - height) * height + std::numbers::pi * height * height / 4;
+    return length * area / (std::numbers::pi * filament_diameter * filament_diameter / 4);
+}
+
+namespace {
+
+// Fixed decimals keep the output deterministic and compact.
+void num(std::string& out, char axis, double v, int decimals) {
+    char buf[48];
+    int n = std::snprintf(buf, sizeof buf, " %c%.*f", axis, decimals, v);
+    // Trim trailing zeros ("X10.500" -> "X10.5", "E1.00000" -> "E1").
+    if (decimals > 0) {
+        while (n > 3 && buf[n - 1] == '0') --n;
+        if (buf[n - 1] == '.') --n;
+    }
+    if (std::string_view(buf + 2, n - 2) == "-0") { buf[2] = '0'; n = 3; }
+    out.append(buf, n);
+}
+
+const char* support_type(gcode::Dialect d) {
+    switch (d) {
+        case gcode::Dialect::Cura: return "SUPPORT";
+        case gcode::Dialect::OrcaSlicer: return "Support";
+        default: return "Support material";
+    }
+}
+
+// Writes one layer's block, starting and ending in the saved state.
+class BlockWriter {
+public:
+    BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
+                std::string_view restore_type, gcode::Dialect dialect)
+        : saved_(saved), s_(s), layer_(layer), fw_(fw_retraction || saved.fw_retracted),
+          restore_type_(restore_type), dialect_(dialect) {
+        // Retract by what the slicer retracted, so its own unretract stays right.
+        amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
+        e_ = saved.e;
+        x_ = saved.x;
+        y_ = saved.y;
+        z_ = saved.z;
+        retracted_ = saved.retracted();
+    }
+
+    std::string write(const std::vector<toolpath::Path>& paths) {
+        out_ += "; scaffold: support for the layer at";
+        num(out_, 'Z', layer_.z, 3);
+        out_ += "\n;TYPE:";
+        out_ += support_type(dialect_);
+        out_ += "\n";
+        for (const toolpath::Path& p : paths) path(p);
+        retract();
+        travel(saved_.x, saved_.y, saved_.z);
+        if (!saved_.retracted()) unretract();
+        if (!saved_.relative_e() && std::abs(e_ - saved_.e) > 1e-9) {
+            out_ += "G92";
+            num(out_, 'E', saved_.e, 5);
+            out_ += "\n";
+        }
+        if (saved_.feed_mm_per_min > 0) {
+            out_ += "G1";
+            num(out_, 'F', saved_.feed_mm_per_min, 0);
+            out_ += "\n";
+        }
+        if (fan_changed_) out_ += saved_.fan > 0 ? "M106 S" + std::to_string(saved_.fan) + "\n" : std::string("M107\n");
+        out_ += ";TYPE:";
+        out_ += restore_type_.empty() ? std::string_view("Unknown") : restore_type_;
+        out_ += "\n; scaffold: end\n";
+        return std::move(out_);
+    }
+
+    double filament() const { return filament_; }
+    double length() const { return length_; }
+
+private:
+    void extrude_e(double de) {
+        e_ += de;
+        num(out_, 'E', saved_.relative_e() ? de : e_, 5);
+    }
+
+    void retract() {
+        if (retracted_) return;
+        if (fw_) out_ += "G10\n";
+        else {
+            out_ += "G1";
+            extrude_e(-amount_);
+            num(out_, 'F', s_.retract_speed_mm_s * 60, 0);
+            out_ += "\n";
+        }
+        retracted_ = true;
+    }
+
+    void unretract() {
+        if (!retracted_) return;
+        if (fw_) out_ += "G11\n";
+        else {
+            double speed = s_.deretract_speed_mm_s > 0 ? s_.deretract_speed_mm_s : s_.retract_speed_mm_s;
+            out_ += "G1";
+            extrude_e(amount_);
+            num(out_, 'F', speed * 60, 0);
+            out_ += "\n";
+        }
+        retracted_ = false;
+    }
+
+    // Long travels are lifted by the slicer's z-hop; otherwise the nozzle
+    // rises before and descends after the XY move, never dragging down.
+    void travel(double x, double y, double z) {
+        double d = std::hypot(x - x_, y - y_);
+        if (s_.retract_lift > 0 && d > s_.retract_before_travel) move_z(std::max(z_, z) + s_.retract_lift);
+        else if (z > z_ + 1e-6) move_z(z);
+        if (d > 1e-6) {
+            out_ += "G1";
+            num(out_, 'X', x, 3);
+            num(out_, 'Y', y, 3);
+            num(out_, 'F', s_.travel_speed_mm_s * 60, 0);
+            out_ += "\n";
+        }
+        if (std::abs(z - z_) > 1e-6) move_z(z);
+        x_ = x;
+        y_ = y;
+    }
+
+    void move_z(double z) {
+        out_ += "G1";
+        num(out_, 'Z', z, 3);
+        num(out_, 'F', s_.travel_speed_mm_s * 60, 0);
+        out_ += "\n";
+        z_ = z;
+    }
+
+    void path(const toolpath::Path& p) {
+        if (p.points.size() < 2) return;
+        const auto& a = p.points.front();
+        double d = std::hypot(a.x - x_, a.y - y_);
+        if (d > s_.retract_before_travel) retract();
+        travel(a.x, a.y, layer_.z);
+        unretract();
+        if (p.bridge && saved_.fan < 255) {
+            out_ += "M106 S" + std::to_string(static_cast<int>(std::lround(2.55 * s_.bridge_fan_percent))) + "\n";
+            fan_changed_ = true;
+        }
+        double feed = p.speed_mm_s * 60;
+        bool first = true;
+        for (std::size_t i = 1; i < p.points.size(); ++i) {
+            const auto& b = p.points[i];
+            double len = std::hypot(b.x - x_, b.y - y_);
+            if (len < 1e-6) continue;
+            double de = filament_for(len, p.width, layer_.height, s_.filament_diameter);
+            out_ += "G1";
+            num(out_, 'X', b.x, 3);
+            num(out_, 'Y', b.y, 3);
+            extrude_e(de);
+            if (first) num(out_, 'F', feed, 0);
+            out_ += "\n";
+            first = false;
+            filament_ += de;
+            length_ += len;
+            x_ = b.x;
+            y_ = b.y;
+        }
+    }
+
+    const gcode::MachineState& saved_;
+    const Settings& s_;
+    const layers::Layer& layer_;
+    bool fw_;
+    std::string_view restore_type_;
+    gcode::Dialect dialect_;
+    double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
+    bool retracted_ = false, fan_changed_ = false;
+    double filament_ = 0, length_ = 0;
+    std::string out_;
+};
+
+}  // namespace
+
+SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
+                    const toolpath::SupportPaths& paths, const Settings& settings) {
+    SpliceResult result;
+    // One pass of the machine over the file, pausing at each insertion point.
+    gcode::MachineState st;
+    gcode::Command cmd;
+    std::vector<gcode::Move> scratch;
+    std::string last_type;
+    std::uint32_t line = 0;
+    bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
+    for (const toolpath::LayerPaths& lp : paths.layers) {
+        const layers::Layer& layer = stack.layers[lp.layer];
+        std::uint32_t at = layer.end_line;
+        for (; line < at && line < program.lines.size(); ++line) {
+            std::string_view text = program.line_text(line);
+            gcode::lex(text, cmd);
+            if (cmd.letter == 0) {
+                std::size_t semi = text.find(";TYPE:");
+                if (semi != std::string_view::npos) last_type = std::string(text.substr(semi + 6));
+                continue;
+            }
+            scratch.clear();
+            gcode::step(st, cmd, line, scratch);
+        }
+        BlockWriter w(st, settings, layer, fw, last_type, program.dialect);
+        gcode::Edit e;
+        e.line = at;
+        e.text = w.write(lp.paths);
+        result.filament_mm += w.filament();
+        result.extruded_length_mm += w.length();
+        result.edits.push_back(std::move(e));
+        ++result.layers_touched;
+    }
+    return result;
+}
+
+}  // namespace scaffold::splice

@@ -1,0 +1,30 @@
+#pragma once
+// Step 6: each layer's support paths become a G-code block inserted at the
+// end of that layer. The block saves and restores the machine state around
+// itself (position, E register, retraction, feedrate, fan, role comment),
+// so the model's own lines pass through unchanged and in order.
+#include <string>
+#include <vector>
+
+#include "gcode/program.hpp"
+#include "gcode/settings.hpp"
+#include "gcode/writer.hpp"
+#include "layers/layer_stack.hpp"
+#include "toolpath/support_paths.hpp"
+
+namespace scaffold::splice {
+
+struct SpliceResult {
+    std::vector<gcode::Edit> edits;  // one insertion per layer with support
+    double filament_mm = 0;          // support filament, mm of filament
+    double extruded_length_mm = 0;   // support bead length
+    int layers_touched = 0;
+};
+
+SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
+                    const toolpath::SupportPaths& paths, const Settings& settings);
+
+// Filament (mm) for a bead of this length, width and height.
+double filament_for(double length, double width, double height, double filament_diameter);
+
+}  // namespace scaffold::splice

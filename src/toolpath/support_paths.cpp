@@ -1,0 +1,108 @@
+#include "toolpath/support_paths.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "plan/pillars.hpp"
+
+namespace scaffold::toolpath {
+
+std::vector<Point> loop(double cx, double cy, double r, double width) {
+    double rc = std::max(r - width / 2, width * 0.25);
+    int sides = std::clamp(static_cast<int>(std::ceil(2 * std::numbers::pi * rc / 0.6)), 8, 48);
+    std::vector<Point> pts;
+    pts.reserve(sides + 1);
+    for (int k = 0; k <= sides; ++k) {
+        double a = 2 * std::numbers::pi * (k % sides) / sides;
+        pts.push_back({cx + rc * std::cos(a), cy + rc * std::sin(a)});
+    }
+    return pts;
+}
+
+namespace {
+
+constexpr double kZEps = 1e-6;
+
+// Outline plus zigzag fill of a square of side `size` around (cx, cy).
+Path raft(double cx, double cy, double size, double width, double speed) {
+    Path p;
+    p.kind = PathKind::Raft;
+    p.width = width;
+    p.speed_mm_s = speed;
+    double h = size / 2 - width / 2;
+    p.points = {{cx - h, cy - h}, {cx + h, cy - h}, {cx + h, cy + h}, {cx - h, cy + h}, {cx - h, cy - h}};
+    bool left = true;
+    for (double y = cy - h + width; y < cy + h - width * 0.5; y += width) {
+        double x0 = cx - h + width, x1 = cx + h - width;
+        p.points.push_back({left ? x0 : x1, y});
+        p.points.push_back({left ? x1 : x0, y});
+        left = !left;
+    }
+    return p;
+}
+
+// Nearest-first order from the previous path's end; ties keep the input order.
+void order_paths(std::vector<Path>& paths) {
+    if (paths.size() < 3) return;
+    std::vector<Path> out;
+    out.reserve(paths.size());
+    std::vector<bool> used(paths.size(), false);
+    Point at = paths[0].points.front();
+    for (std::size_t n = 0; n < paths.size(); ++n) {
+        std::size_t best = paths.size();
+        double best_d = 1e300;
+        for (std::size_t i = 0; i < paths.size(); ++i) {
+            if (used[i]) continue;
+            double d = std::hypot(paths[i].points.front().x - at.x, paths[i].points.front().y - at.y);
+            if (d < best_d) { best_d = d; best = i; }
+        }
+        used[best] = true;
+        at = paths[best].points.back();
+        out.push_back(std::move(paths[best]));
+    }
+    paths = std::move(out);
+}
+
+}  // namespace
+
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s) {
+    SupportPaths out;
+    const double w = s.support_width;
+    for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
+        const layers::Layer& layer = stack.layers[l];
+        double z = layer.z;
+        bool first_layer = layer.on_bed;
+        double speed = first_layer ? s.first_layer_speed_mm_s : s.support_speed_mm_s;
+        LayerPaths lp;
+        lp.layer = l;
+        for (const plan::Column& c : scaffold.columns) {
+            if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
+            // A column whose base is on the bed starts on the first layer.
+            double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;
+            double cx = c.x0 + (c.x1 - c.x0) * t, cy = c.y0 + (c.y1 - c.y0) * t;
+            if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0)
+                lp.paths.push_back(raft(cx, cy, c.raft_size, w, speed));
+            double r = plan::column_radius_at(c, z, s);
+            Path p;
+            p.kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
+                     : (c.x0 != c.x1 || c.y0 != c.y1) ? PathKind::Connector : PathKind::Pillar;
+            p.width = w;
+            p.speed_mm_s = speed;
+            p.points = loop(cx, cy, r, w);
+            lp.paths.push_back(std::move(p));
+            // Wide pillars get a second wall so they stay stiff.
+            if (r - w > 1.5 * w && r > 1.4) {
+                Path inner = lp.paths.back();
+                inner.points = loop(cx, cy, r - w * 0.9, w);
+                lp.paths.push_back(std::move(inner));
+            }
+        }
+        if (lp.paths.empty()) continue;
+        order_paths(lp.paths);
+        out.layers.push_back(std::move(lp));
+    }
+    return out;
+}
+
+}  // namespace scaffold::toolpath

@@ -1,0 +1,40 @@
+#pragma once
+// Step 5: the planned scaffold as extrusion paths, per layer: pillar loops
+// (tapered tips, flared feet), raft squares on the first layer, and bridge
+// lines. Plain geometry with width, height and speed; splice/ writes G-code.
+#include <vector>
+
+#include "layers/layer_stack.hpp"
+#include "plan/scaffold.hpp"
+
+namespace scaffold::toolpath {
+
+enum class PathKind { Pillar, Foot, Raft, Bridge, Connector };
+
+struct Point {
+    double x = 0, y = 0;
+};
+
+struct Path {
+    std::vector<Point> points;  // extruded from first to last
+    double width = 0.45;        // mm
+    double speed_mm_s = 60;
+    PathKind kind = PathKind::Pillar;
+    bool bridge = false;        // print with bridge settings (fan on)
+};
+
+struct LayerPaths {
+    int layer = 0;              // index into LayerStack::layers
+    std::vector<Path> paths;    // in printing order
+};
+
+struct SupportPaths {
+    std::vector<LayerPaths> layers;  // only layers with support, by index
+};
+
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings);
+
+// A closed loop whose outer edge is at radius r (centre line r - width/2).
+std::vector<Point> loop(double cx, double cy, double r, double width);
+
+}  // namespace scaffold::toolpath

@@ -1,0 +1,123 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "gcode/reader.hpp"
+#include "gcode/writer.hpp"
+#include "layers/layer_stack.hpp"
+#include "splice/splice.hpp"
+#include "support/synth.hpp"
+#include "toolpath/support_paths.hpp"
+
+using namespace scaffold;
+
+namespace {
+
+std::string render(const gcode::Program& p, std::vector<gcode::Edit> edits) {
+    char* buf = nullptr;
+    std::size_t size = 0;
+    std::FILE* f = open_memstream(&buf, &size);
+    gcode::write_edited(f, p, std::move(edits));
+    std::fclose(f);
+    std::string out(buf, size);
+    std::free(buf);
+    return out;
+}
+
+// Moves of the output that come from the original lines (outside blocks).
+std::vector<gcode::Move> model_moves(const gcode::Program& out) {
+    std::vector<bool> inserted(out.lines.size(), false);
+    bool in = false;
+    for (std::size_t i = 0; i < out.lines.size(); ++i) {
+        std::string_view t = out.line_text(i);
+        if (t.rfind("; scaffold: support for", 0) == 0) in = true;
+        inserted[i] = in;
+        if (t == "; scaffold: end") in = false;
+    }
+    std::vector<gcode::Move> m;
+    for (const auto& mv : out.moves)
+        if (!inserted[mv.line]) m.push_back(mv);
+    return m;
+}
+
+// A tower of `layers` layers with the given preamble lines (E mode etc.).
+std::string tower(const std::string& preamble_extra, bool fw, double lift) {
+    scaffold::testing::SynthGcode g;
+    g.raw(preamble_extra);
+    for (int l = 1; l <= 6; ++l) {
+        g.layer(0.2 * l);
+        g.filled_rect(100, 100, 110, 110);
+        if (fw) g.raw("G10");
+        else g.raw("G1 E" + std::to_string(0) + " ; placeholder");
+        if (lift > 0) g.raw("G1 Z" + std::to_string(0.2 * l + lift));
+    }
+    std::string s = g.str();
+    // The placeholder is a no-op retract marker only used to keep the shape; drop it.
+    std::string out;
+    std::size_t pos = 0;
+    while (pos < s.size()) {
+        std::size_t nl = s.find('\n', pos);
+        std::string line = s.substr(pos, nl - pos);
+        if (line.find("placeholder") == std::string::npos) out += line + "\n";
+        pos = nl + 1;
+    }
+    return out;
+}
+
+void check_round(const std::string& text, const char* what) {
+    SCOPED_TRACE(what);
+    gcode::Program in = gcode::parse(text, "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    plan::Scaffold sc;
+    plan::Column c;
+    c.x0 = c.x1 = 130;
+    c.y0 = c.y1 = 105;
+    c.z0 = 0;
+    c.z1 = 1.0;
+    c.raft_size = 5;
+    sc.columns.push_back(c);
+    auto paths = toolpath::make_paths(sc, stack, s);
+    ASSERT_EQ(paths.layers.size(), 5u);  // layers at z 0.2 .. 1.0
+    auto res = splice::splice(in, stack, paths, s);
+    EXPECT_EQ(res.layers_touched, 5);
+    EXPECT_GT(res.filament_mm, 0);
+    gcode::Program out = gcode::parse(render(in, res.edits), "out");
+    auto mm = model_moves(out);
+    ASSERT_EQ(mm.size(), in.moves.size());
+    for (std::size_t i = 0; i < mm.size(); ++i) {
+        const auto &a = in.moves[i], &b = mm[i];
+        ASSERT_EQ(a.kind, b.kind) << "move " << i;
+        ASSERT_FLOAT_EQ(a.e, b.e) << "move " << i;
+        ASSERT_FLOAT_EQ(a.x0, b.x0) << "move " << i;
+        ASSERT_FLOAT_EQ(a.y0, b.y0) << "move " << i;
+        ASSERT_FLOAT_EQ(a.z0, b.z0) << "move " << i;
+        ASSERT_FLOAT_EQ(a.x1, b.x1) << "move " << i;
+        ASSERT_FLOAT_EQ(a.feed_mm_per_min, b.feed_mm_per_min) << "move " << i;
+    }
+    // Support extrusions: typed as support, at the layer's z, never below the layer.
+    double support_e = 0;
+    for (const auto& m : out.moves) {
+        if (m.kind != gcode::MoveKind::Extrude || m.role != gcode::Role::Support) continue;
+        support_e += m.e;
+        EXPECT_GT(m.x0, 120);
+    }
+    EXPECT_NEAR(support_e, res.filament_mm, 1e-3);
+    // Output layers: the same Z set, support only adds to them.
+    auto out_stack = layers::build_layers(out, s);
+    EXPECT_EQ(out_stack.layers.size(), stack.layers.size());
+}
+
+}  // namespace
+
+TEST(Splice, AbsoluteE) { check_round(tower("", false, 0), "absolute E"); }
+TEST(Splice, RelativeE) { check_round(tower("M83", false, 0), "relative E"); }
+TEST(Splice, FirmwareRetraction) { check_round(tower("", true, 0), "G10/G11"); }
+TEST(Splice, ZHop) { check_round(tower("", false, 0.4), "z-hop"); }
+
+TEST(Splice, FilamentForCrossSection) {
+    // 0.45 x 0.2 bead, 10 mm: area (0.25*0.2 + pi*0.01) mm^2 over the filament's 2.405 mm^2.
+    double expect = 10 * (0.25 * 0.2 + M_PI * 0.04 / 4) / (M_PI * 1.75 * 1.75 / 4);
+    EXPECT_NEAR(splice::filament_for(10, 0.45, 0.2, 1.75), expect, 1e-12);
+}
