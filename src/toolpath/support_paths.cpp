@@ -98,6 +98,25 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 lp.paths.push_back(std::move(inner));
             }
         }
+        for (const plan::Bridge& br : scaffold.bridges) {
+            // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
+            if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
+            double dx = br.x1 - br.x0, dy = br.y1 - br.y0, len = std::hypot(dx, dy);
+            if (len < 1e-6) continue;
+            double nx = -dy / len * w / 2, ny = dx / len * w / 2;
+            // Reach into the pillar tops at both ends so the bar is anchored.
+            double ex = dx / len * s.pillar_radius * 0.5, ey = dy / len * s.pillar_radius * 0.5;
+            for (int side : {-1, 1}) {
+                Path p;
+                p.kind = PathKind::Bridge;
+                p.bridge = true;
+                p.width = w;
+                p.speed_mm_s = s.bridge_speed_mm_s;
+                Point a{br.x0 - ex + side * nx, br.y0 - ey + side * ny}, b{br.x1 + ex + side * nx, br.y1 + ey + side * ny};
+                p.points = side < 0 ? std::vector<Point>{a, b} : std::vector<Point>{b, a};
+                lp.paths.push_back(std::move(p));
+            }
+        }
         if (lp.paths.empty()) continue;
         order_paths(lp.paths);
         out.layers.push_back(std::move(lp));

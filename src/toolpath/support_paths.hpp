@@ -32,6 +32,9 @@ struct SupportPaths {
     std::vector<LayerPaths> layers;  // only layers with support, by index
 };
 
+// A bridge bar is two layers thick, starting at Bridge::z.
+inline constexpr double kBridgeThickness = 0.4;
+
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings);
 
 // A closed loop whose outer edge is at radius r (centre line r - width/2).
