@@ -1,6 +1,7 @@
 #include "gcode/lexer.hpp"
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 
 namespace scaffold::gcode {
@@ -26,12 +27,34 @@ std::string_view trim(std::string_view s) {
     return s;
 }
 
+constexpr double kPow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10,
+                             1e11, 1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18};
+
 // Reads a number at p (allowing a leading '+'); returns end or nullptr.
+// Plain decimals ("-12.345", ".5") take a fast exact path: an integer
+// mantissa divided by an exact power of ten rounds correctly. Anything
+// else (exponents, long digit strings) goes to std::from_chars.
 const char* read_number(const char* p, const char* end, double& value) {
     if (p < end && *p == '+') ++p;
-    auto [q, ec] = std::from_chars(p, end, value);
+    const char* q = p;
+    bool negative = q < end && *q == '-';
+    if (negative) ++q;
+    std::uint64_t mantissa = 0;
+    int digits = 0, frac = 0;
+    while (q < end && *q >= '0' && *q <= '9') { mantissa = mantissa * 10 + static_cast<unsigned>(*q - '0'); ++q; ++digits; }
+    if (q < end && *q == '.') {
+        ++q;
+        while (q < end && *q >= '0' && *q <= '9') { mantissa = mantissa * 10 + static_cast<unsigned>(*q - '0'); ++q; ++digits; ++frac; }
+    }
+    bool plain = digits > 0 && digits <= 18 && (q == end || (*q != 'e' && *q != 'E' && *q != '.'));
+    if (plain) {
+        value = static_cast<double>(mantissa) / kPow10[frac];
+        if (negative) value = -value;
+        return q;
+    }
+    auto [r, ec] = std::from_chars(p, end, value);
     if (ec != std::errc()) return nullptr;
-    return q;
+    return r;
 }
 
 }  // namespace

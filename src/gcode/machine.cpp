@@ -11,8 +11,8 @@ namespace {
 constexpr double kArcTolerance = 0.01;  // mm chord deviation
 constexpr double kMaxCoordinate = 10000;  // mm; beyond this a file is broken
 
-MoveKind classify(double dxy, double e) {
-    if (dxy > 1e-9) return e > 0 ? MoveKind::Extrude : (e < 0 ? MoveKind::Wipe : MoveKind::Travel);
+MoveKind classify(double dxy2, double e) {
+    if (dxy2 > 1e-18) return e > 0 ? MoveKind::Extrude : (e < 0 ? MoveKind::Wipe : MoveKind::Travel);
     if (e < 0) return MoveKind::Retract;
     if (e > 0) return MoveKind::Unretract;
     return MoveKind::Travel;
@@ -31,7 +31,7 @@ void push(std::vector<Move>& moves, std::uint32_t line, double x0, double y0, do
     m.x1 = static_cast<float>(x1); m.y1 = static_cast<float>(y1); m.z1 = static_cast<float>(z1);
     m.e = static_cast<float>(e);
     m.feed_mm_per_min = static_cast<float>(st.feed_mm_per_min);
-    m.kind = classify(std::hypot(x1 - x0, y1 - y0), e);
+    m.kind = classify((x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0), e);  // hypot is slow here
     m.tool = static_cast<std::uint8_t>(std::clamp(st.tool, 0, 255));
     moves.push_back(m);
 }

@@ -24,20 +24,26 @@ namespace {
 
 constexpr double kFootMinHeight = 3.0;  // report: feet only under pillars taller than 3 mm
 
+// Tips may come this close to the model: they touch it at the contact anyway.
+constexpr double kTipClearance = 0.2;
+
 // Checks the column from its top layer down; fills base and z0 on success.
 bool descend(Column& c, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
-    double gap = s.xy_gap;
+    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     bool first = true;
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
-        double r = column_radius_at(c, stack.layers[l].z, s);
-        if (obs.disc_clear(l, c.x1, c.y1, r + gap)) {
+        const layers::Layer& layer = stack.layers[l];
+        double r = column_radius_at(c, layer.z, s);
+        bool tip = c.top == Top::Contact && layer.z > c.z1 - s.tip_length;
+        if (obs.disc_clear(l, c.x1, c.y1, r + (tip ? kTipClearance : s.xy_gap))) {
             first = false;
             continue;
         }
-        // Model under the column's core: stand on it. Model only beside it: a collision.
-        if (first || obs.disc_clear(l, c.x1, c.y1, r * 0.5)) return false;
+        // Model under the loop (within the self-supporting reach): stand on it.
+        // Model only beside it: a collision.
+        if (first || obs.disc_clear(l, c.x1, c.y1, r + layer.height * slope * 0.9)) return false;
         c.base = Base::Model;
-        c.z0 = stack.layers[l].z;
+        c.z0 = layer.z;
         return true;
     }
     c.base = Base::Bed;
@@ -87,7 +93,7 @@ std::optional<Column> drop_pillar(double x, double y, int overhang_layer, Top to
     // Tall pillars wobble: keep height / diameter within the slenderness limit.
     c.radius = std::max(s.pillar_radius, c.z1 / (2 * s.slenderness));
     // The point itself first, then rings around it, in a fixed order.
-    static constexpr std::array<double, 4> kRings{0.0, 0.5, 1.0, 1.5};
+    static constexpr std::array<double, 6> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5};
     for (double d : kRings) {
         int n = d == 0 ? 1 : 8;
         for (int k = 0; k < n; ++k) {
