@@ -27,14 +27,14 @@ std::string shelf() {
     return g.str();
 }
 
-// A cap of radius 8 on a stem of radius 2.5.
+// A cap of radius 6 on a stem of radius 2.5.
 std::string mushroom() {
     SynthGcode g;
-    for (int l = 1; l <= 30; ++l) {
+    for (int l = 1; l <= 20; ++l) {
         double z = 0.2 * l;
         g.layer(z);
         g.type("External perimeter");
-        g.filled_disc(110, 105, z > 4.0 + 1e-9 ? 8.0 : 2.5);
+        g.filled_disc(110, 105, z > 3.0 + 1e-9 ? 6.0 : 2.5);
     }
     return g.str();
 }

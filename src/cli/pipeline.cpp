@@ -1,36 +1,184 @@
 #include "cli/pipeline.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <vector>
 
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
 #include "layers/layer_stack.hpp"
+#include "overhang/dump.hpp"
+#include "overhang/overhangs.hpp"
+#include "plan/obstacles.hpp"
+#include "plan/pillars.hpp"
+#include "splice/splice.hpp"
+#include "toolpath/preview.hpp"
+#include "toolpath/support_paths.hpp"
 
 namespace scaffold::cli {
 
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Timings {
+    std::vector<std::pair<std::string, double>> stages;  // name, seconds
+    Clock::time_point t = Clock::now();
+    void lap(const char* name) {
+        auto now = Clock::now();
+        stages.emplace_back(name, std::chrono::duration<double>(now - t).count());
+        t = now;
+    }
+};
+
+const char* method_name(Method m) {
+    switch (m) {
+        case Method::Scaffold: return "scaffold";
+        case Method::Pillars: return "pillars";
+        case Method::None: return "none";
+    }
+    return "?";
+}
+
+std::string fixed(double v, int decimals) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+double filament_volume_cm3(double mm, double diameter) { return mm * std::numbers::pi * diameter * diameter / 4 / 1000; }
+
+// The slicer's "filament used" totals, raised by the support's share so the
+// printer's display and print-cost plugins stay right.
+void update_totals(const gcode::Program& p, double add_mm, double diameter, std::vector<gcode::Edit>& edits) {
+    double add_cm3 = filament_volume_cm3(add_mm, diameter);
+    for (std::uint32_t i = 0; i < p.lines.size(); ++i) {
+        std::string_view t = p.line_text(i);
+        if (t.empty() || t[0] != ';' || t.find("ilament used") == std::string_view::npos) continue;
+        std::string s(t);
+        auto value_after = [&](std::string_view key, double& v, std::size_t& at) {
+            std::size_t k = s.find(key);
+            if (k == std::string::npos) return false;
+            at = k + key.size();
+            char* end = nullptr;
+            v = std::strtod(s.c_str() + at, &end);
+            return end != s.c_str() + at;
+        };
+        double v = 0;
+        std::size_t at = 0;
+        std::string repl;
+        if (value_after("; filament used [mm] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm, 2);
+        else if (value_after("; filament used [cm3] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_cm3, 2);
+        else if (value_after(";Filament used: ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm / 1000, 5) + "m";
+        else if (value_after("; filament used = ", v, at))
+            repl = s.substr(0, at) + fixed(v + add_mm, 1) + "mm (" + fixed(filament_volume_cm3(v + add_mm, diameter), 1) + "cm3)";
+        if (repl.empty() || (s.find(',') != std::string::npos && s.find(',') > at)) continue;  // multi-extruder lists: leave
+        edits.push_back({i, true, repl});
+    }
+}
+
+void write_text(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out || !(out << text) || !out.flush()) throw Error(path, 0, "cannot write this file");
+}
+
+}  // namespace
+
 void run(const Request& req, spdlog::logger& log) {
-    using clock = std::chrono::steady_clock;
-    auto t0 = clock::now();
+    Timings time;
     gcode::Program program = gcode::read_file(req.input);
-    log.debug("read {} lines, {} moves ({}), {:.1f} ms", program.lines.size(), program.moves.size(),
-              gcode::dialect_name(program.dialect),
-              std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+    time.lap("read");
     SettingMap cli = req.slicer_overrides;
     for (const auto& [k, v] : req.overrides) cli[k] = v;
-    Settings settings = build_settings(program, settings_from_environment(), cli);
+    const Settings settings = build_settings(program, settings_from_environment(), cli);
+    log.debug("{}: {} lines, {} moves, dialect {}", program.path, program.lines.size(), program.moves.size(),
+              gcode::dialect_name(program.dialect));
     if (settings.method == Method::None) {
         gcode::write_output(req.output, program, {});
-        log.info("--method none: {} written unchanged", req.output == "-" ? "<stdout>" : req.output);
+        log.info("--method none: written unchanged");
         return;
     }
     if (settings.spiral_vase)
-        throw Error(program.path, 0, "spiral vase mode is not supported: a vase is one continuous wall and has no place for supports");
+        throw Error(program.path, 0, "spiral vase mode is not supported: a vase is one continuous wall with no place for supports");
     if (settings.sequential_printing)
-        throw Error(program.path, 0, "sequential printing (complete objects) is not supported: supports would collide with the printed objects; slice with all objects printed layer by layer");
-    layers::LayerStack stack = layers::build_layers(program, settings);
-    log.info("{} layers", stack.layers.size());
-    throw Error("support generation is not wired in yet");
+        throw Error(program.path, 0, "sequential printing (complete objects) is not supported: supports would be printed "
+                                     "under objects that are finished first; slice with objects printed layer by layer");
+    bool big = program.text.size() > 10'000'000;
+    if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
+
+    const layers::LayerStack stack = layers::build_layers(program, settings);
+    time.lap("layers");
+    const overhang::Overhangs overhangs = overhang::find_overhangs(stack, settings);
+    const overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
+    time.lap("overhangs");
+    if (auto it = req.files.find("dump-points"); it != req.files.end()) overhang::write_points_json(it->second, points);
+    if (auto it = req.files.find("dump-layers"); it != req.files.end())
+        overhang::write_layer_svgs(it->second, overhangs, points, stack, settings);
+    if (big) log.info("{} support points; planning...", points.points.size());
+
+    const plan::Obstacles obstacles(stack, settings);
+    // The bridge planner is not in yet: say so, and plan pillars.
+    if (settings.method == Method::Scaffold) log.warn("--method scaffold: bridge planning not available yet, using pillars");
+    const plan::Scaffold scaffold = plan::plan_pillars(points, stack, obstacles, settings);
+    time.lap("plan");
+    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings);
+    time.lap("toolpath");
+    if (auto it = req.files.find("preview"); it != req.files.end())
+        write_text(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
+    splice::SpliceResult spliced = splice::splice(program, stack, paths, settings);
+    time.lap("splice");
+
+    double model_mm = 0;
+    for (const auto& m : program.moves)
+        if (m.kind == gcode::MoveKind::Extrude) model_mm += m.e;
+    std::size_t pillars = 0;
+    for (const auto& c : scaffold.columns) pillars += c.base != plan::Base::Bridge;
+    std::string header = "; scaffold " SCAFFOLD_VERSION " (post-processed supports)\n";
+    header += "; scaffold: method = " + std::string(method_name(settings.method)) + ", overhang angle = " +
+              fixed(settings.overhang_angle_deg, 1) + " deg, xy gap = " + fixed(settings.xy_gap, 2) +
+              " mm, point spacing = " + fixed(settings.point_spacing, 2) + " mm, resolution = " +
+              fixed(settings.resolution, 3) + " mm\n";
+    header += "; scaffold: points = " + std::to_string(points.points.size()) + ", pillars = " + std::to_string(pillars) +
+              ", bridges = " + std::to_string(scaffold.bridges.size()) + ", dropped points = " +
+              std::to_string(scaffold.dropped_points.size()) + "\n";
+    header += "; scaffold: support filament used [mm] = " + fixed(spliced.filament_mm, 2) + "\n";
+    std::vector<gcode::Edit> edits = std::move(spliced.edits);
+    edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
+    update_totals(program, spliced.filament_mm, settings.filament_diameter, edits);
+    gcode::write_output(req.output, program, std::move(edits));
+    time.lap("write");
+
+    double grams = filament_volume_cm3(spliced.filament_mm, settings.filament_diameter) * 1.24;  // PLA density
+    log.info("{} support points, {} bridges, {} pillars{}; support filament {:.1f} mm ({:.1f} g, {:.1f} % of the model)",
+             points.points.size(), scaffold.bridges.size(), pillars,
+             scaffold.dropped_points.empty() ? "" : fmt::format(", {} points dropped", scaffold.dropped_points.size()),
+             spliced.filament_mm, grams, model_mm > 0 ? 100 * spliced.filament_mm / model_mm : 0.0);
+    for (const auto& [name, s] : time.stages) log.debug("stage {}: {:.1f} ms", name, s * 1000);
+
+    if (auto it = req.files.find("report"); it != req.files.end()) {
+        std::string j = "{\n";
+        j += "  \"input\": \"" + program.path + "\",\n";
+        j += "  \"method\": \"" + std::string(method_name(settings.method)) + "\",\n";
+        j += "  \"dialect\": \"" + std::string(gcode::dialect_name(program.dialect)) + "\",\n";
+        j += "  \"layers\": " + std::to_string(stack.layers.size()) + ",\n";
+        j += "  \"overhang_area_mm2\": " + fixed(points.overhang_area_mm2, 2) + ",\n";
+        j += "  \"points\": " + std::to_string(points.points.size()) + ",\n";
+        j += "  \"pillars\": " + std::to_string(pillars) + ",\n";
+        j += "  \"bridges\": " + std::to_string(scaffold.bridges.size()) + ",\n";
+        j += "  \"dropped_points\": " + std::to_string(scaffold.dropped_points.size()) + ",\n";
+        j += "  \"support_filament_mm\": " + fixed(spliced.filament_mm, 2) + ",\n";
+        j += "  \"model_filament_mm\": " + fixed(model_mm, 2) + ",\n";
+        j += "  \"layers_touched\": " + std::to_string(spliced.layers_touched) + ",\n";
+        j += "  \"seconds\": {";
+        for (std::size_t i = 0; i < time.stages.size(); ++i)
+            j += (i ? ", \"" : "\"") + time.stages[i].first + "\": " + fixed(time.stages[i].second, 4);
+        j += "}\n}\n";
+        write_text(it->second, j);
+    }
 }
 
 }  // namespace scaffold::cli

@@ -1,0 +1,217 @@
+#include "overhang/overhangs.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+
+namespace scaffold::overhang {
+
+namespace {
+
+// Beads closer than this belong to one overhang region.
+constexpr double kJoin = 0.6;
+
+struct Cell {
+    int i, j;
+};
+
+// 8-connected components of the set cells, each as a list of cells in
+// row-major discovery order (deterministic).
+std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
+    layers::BitGrid seen(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
+                         g.origin_y() + g.height() * g.cell(), g.cell());
+    std::vector<std::vector<Cell>> out;
+    std::vector<Cell> stack;
+    const auto& words = g.words();
+    int wpr = g.words_per_row();
+    for (int j = 0; j < g.height(); ++j) {
+        for (int w = 0; w < wpr; ++w) {
+            std::uint64_t bits = words[static_cast<std::size_t>(j) * wpr + w];
+            while (bits) {
+                int i = w * 64 + std::countr_zero(bits);
+                bits &= bits - 1;
+                if (seen.get(i, j)) continue;
+                std::vector<Cell> comp;
+                stack.push_back({i, j});
+                seen.set(i, j);
+                while (!stack.empty()) {
+                    Cell c = stack.back();
+                    stack.pop_back();
+                    comp.push_back(c);
+                    for (int dj = -1; dj <= 1; ++dj)
+                        for (int di = -1; di <= 1; ++di) {
+                            int a = c.i + di, b = c.j + dj;
+                            if ((di || dj) && g.get(a, b) && !seen.get(a, b)) {
+                                seen.set(a, b);
+                                stack.push_back({a, b});
+                            }
+                        }
+                }
+                out.push_back(std::move(comp));
+            }
+        }
+    }
+    return out;
+}
+
+// One point per grid bin of `cells`, on the cell nearest the bin's centroid.
+void bin_points(const layers::BitGrid& g, const std::vector<Cell>& cells, double spacing, double shift, double z,
+                int layer, std::vector<SupportPoint>& out) {
+    std::vector<std::pair<long long, std::size_t>> keyed;
+    keyed.reserve(cells.size());
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+        long long bx = static_cast<long long>(std::floor((g.cx(cells[k].i) + shift) / spacing));
+        long long by = static_cast<long long>(std::floor((g.cy(cells[k].j) + shift) / spacing));
+        keyed.emplace_back(by * 1000003LL + bx, k);
+    }
+    std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t a = 0; a < keyed.size();) {
+        std::size_t b = a;
+        double sx = 0, sy = 0;
+        while (b < keyed.size() && keyed[b].first == keyed[a].first) {
+            sx += g.cx(cells[keyed[b].second].i);
+            sy += g.cy(cells[keyed[b].second].j);
+            ++b;
+        }
+        double n_in = static_cast<double>(b - a), mx = sx / n_in, my = sy / n_in;
+        std::size_t best = keyed[a].second;
+        double best_d = 1e300;
+        for (std::size_t k = a; k < b; ++k) {
+            const Cell& c = cells[keyed[k].second];
+            double d = std::hypot(g.cx(c.i) - mx, g.cy(c.j) - my);
+            if (d < best_d) { best_d = d; best = keyed[k].second; }
+        }
+        out.push_back({g.cx(cells[best].i), g.cy(cells[best].j), z, layer});
+        a = b;
+    }
+}
+
+// Overhang regions: cells of `g` grouped by the components of `g` grown by
+// `join` mm, so the parallel lines of one bridge or skin make one region.
+std::vector<std::vector<Cell>> regions(const layers::BitGrid& g, double join) {
+    std::vector<std::vector<Cell>> out;
+    for (auto& comp : components(g.dilated(join))) {
+        std::vector<Cell> cells;
+        for (const Cell& c : comp)
+            if (g.get(c.i, c.j)) cells.push_back(c);
+        std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
+        if (!cells.empty()) out.push_back(std::move(cells));
+    }
+    return out;
+}
+
+// A slicer-marked bridge is fine when every unheld stretch of its centre
+// line is held at both ends and no longer than the bridge limit.
+bool bridge_is_held(const layers::Segment& sg, const layers::BitGrid& held, double step, double max_bridge) {
+    double len = std::hypot(sg.x1 - sg.x0, sg.y1 - sg.y0);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
+    int run = -1;
+    for (int k = 0; k <= steps; ++k) {
+        double t = static_cast<double>(k) / steps;
+        double x = sg.x0 + (sg.x1 - sg.x0) * t, y = sg.y0 + (sg.y1 - sg.y0) * t;
+        bool unheld = !held.get(held.col(x), held.row(y));
+        if (unheld && (k == 0 || k == steps)) return false;  // a dangling end
+        if (unheld && run < 0) run = k;
+        if (!unheld && run >= 0) {
+            if ((k - run) * len / steps > max_bridge) return false;
+            run = -1;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
+    Overhangs out;
+    const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
+    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
+    // The filled footprint of the layer beneath, kept from the previous step.
+    int filled_index = -1;
+    layers::BitGrid filled;
+    auto footprint = [&](int index) {
+        if (index != filled_index) {
+            layers::BitGrid g = proto;
+            layers::draw_layer(g, stack.layers[index]);
+            filled = g.filled();
+            filled_index = index;
+        }
+        return filled;
+    };
+    for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
+        const layers::Layer& layer = stack.layers[n];
+        if (layer.on_bed || layer.below < 0) continue;
+        layers::BitGrid held = footprint(layer.below).dilated(layer.height * slope + s.resolution / 2);
+        layers::BitGrid over = proto;
+        layers::BitGrid spanned = proto;
+        for (const layers::Segment& sg : layer.segments) {
+            bool bridge = gcode::is_bridge(sg.role) && bridge_is_held(sg, held, s.resolution, s.max_bridge);
+            (bridge ? spanned : over).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        }
+        over.subtract(spanned);
+        over.subtract(held);
+        if (!over.any()) continue;
+        // Drop specks: regions smaller than the minimum area.
+        double cell_area = over.cell_area();
+        OverhangLayer ol;
+        ol.layer = n;
+        ol.cells = proto;
+        for (const auto& comp : regions(over, kJoin)) {
+            if (static_cast<double>(comp.size()) * cell_area < s.min_overhang_area) continue;
+            for (const Cell& c : comp) ol.cells.set(c.i, c.j);
+        }
+        std::size_t count = ol.cells.count();
+        if (count == 0) continue;
+        ol.area_mm2 = static_cast<double>(count) * cell_area;
+        out.area_mm2 += ol.area_mm2;
+        out.layers.push_back(std::move(ol));
+    }
+    return out;
+}
+
+SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack& stack, const Settings& s) {
+    SupportPoints out;
+    out.overhang_area_mm2 = overhangs.area_mm2;
+    for (const OverhangLayer& ol : overhangs.layers) {
+        const layers::BitGrid& g = ol.cells;
+        const layers::Layer& layer = stack.layers[ol.layer];
+        double z = layer.z - layer.height;
+        std::vector<SupportPoint> pts;
+        for (const auto& comp : regions(g, kJoin)) {
+            std::vector<SupportPoint> comp_pts;
+            std::vector<Cell> todo = comp;
+            const double r2 = s.point_radius * s.point_radius;
+            auto uncovered = [&](const std::vector<Cell>& cells) {
+                std::vector<Cell> left;
+                for (const Cell& c : cells) {
+                    double x = g.cx(c.i), y = g.cy(c.j);
+                    bool covered = std::any_of(comp_pts.begin(), comp_pts.end(), [&](const SupportPoint& p) {
+                        return (p.x - x) * (p.x - x) + (p.y - y) * (p.y - y) <= r2;
+                    });
+                    if (!covered) left.push_back(c);
+                }
+                return left;
+            };
+            // Rounds of grid binning (bins shifted by half a spacing each round)
+            // over what is still uncovered; the last resort is a point on the cell.
+            for (int round = 0; round < 4 && !todo.empty(); ++round) {
+                double shift = round * s.point_spacing / 2;
+                bin_points(g, todo, s.point_spacing, shift, z, ol.layer, comp_pts);
+                todo = uncovered(todo);
+            }
+            while (!todo.empty()) {
+                comp_pts.push_back({g.cx(todo.front().i), g.cy(todo.front().j), z, ol.layer});
+                todo = uncovered(todo);
+            }
+            pts.insert(pts.end(), comp_pts.begin(), comp_pts.end());
+        }
+        std::stable_sort(pts.begin(), pts.end(), [](const SupportPoint& a, const SupportPoint& b) {
+            return a.y != b.y ? a.y < b.y : a.x < b.x;
+        });
+        out.points.insert(out.points.end(), pts.begin(), pts.end());
+    }
+    return out;
+}
+
+}  // namespace scaffold::overhang
