@@ -191,39 +191,83 @@ BitGrid BitGrid::dilated(double r) const {
     return out;
 }
 
-BitGrid BitGrid::filled() const {
-    // Flood the empty cells from the border; whatever the flood misses is
-    // enclosed by material and counts as filled.
-    BitGrid outside(ox_, oy_, ox_ + nx_ * cell_, oy_ + ny_ * cell_, cell_);
-    outside.nx_ = nx_;
-    outside.ny_ = ny_;
-    outside.wpr_ = wpr_;
-    outside.words_.assign(words_.size(), 0);
-    std::vector<std::pair<int, int>> stack;
-    auto seed = [&](int i, int j) {
-        if (!get(i, j) && !outside.get(i, j)) stack.emplace_back(i, j);
+namespace {
+
+// Span flood fill over the free (unset) cells of `g` from (i, j), marking
+// `mark`; returns whether the flood touched the grid border.
+struct Span {
+    int j, a, b;
+};
+
+bool flood_free(const BitGrid& g, BitGrid& mark, int i0, int j0, std::vector<std::pair<int, int>>& stack,
+                std::vector<Span>* spans = nullptr) {
+    const int nx = g.width(), ny = g.height(), wpr = g.words_per_row();
+    // Free cells of row j in word w: not material, not yet flooded, inside the grid.
+    auto free_word = [&](int j, int w) {
+        std::uint64_t f = ~(g.row_words(j)[w] | mark.row_words(j)[w]);
+        if (w == wpr - 1 && (nx & 63)) f &= ~std::uint64_t{0} >> (64 - (nx & 63));
+        return f;
     };
-    for (int i = 0; i < nx_; ++i) { seed(i, 0); seed(i, ny_ - 1); }
-    for (int j = 0; j < ny_; ++j) { seed(0, j); seed(nx_ - 1, j); }
+    auto is_free = [&](int i, int j) { return (free_word(j, i >> 6) >> (i & 63)) & 1u; };
+    bool border = false;
+    stack.clear();
+    stack.emplace_back(i0, j0);
     while (!stack.empty()) {
         auto [i, j] = stack.back();
         stack.pop_back();
-        if (outside.get(i, j) || get(i, j)) continue;
-        int a = i, b = i;
-        while (a > 0 && !get(a - 1, j) && !outside.get(a - 1, j)) --a;
-        while (b + 1 < nx_ && !get(b + 1, j) && !outside.get(b + 1, j)) ++b;
-        outside.set_row_span(j, a, b);
-        for (int dj : {-1, 1}) {
-            int jj = j + dj;
-            if (jj < 0 || jj >= ny_) continue;
-            bool in_run = false;
-            for (int k = a; k <= b; ++k) {
-                bool free = !get(k, jj) && !outside.get(k, jj);
-                if (free && !in_run) stack.emplace_back(k, jj);
-                in_run = free;
+        if (!is_free(i, j)) continue;
+        // Extend the run right and left a word at a time.
+        int b = i;
+        for (int w = i >> 6;; ++w) {
+            std::uint64_t blocked = ~free_word(j, w);
+            if (w == i >> 6) blocked &= ~std::uint64_t{0} << (i & 63);
+            if (blocked) { b = w * 64 + std::countr_zero(blocked) - 1; break; }
+            if (w == wpr - 1) { b = nx - 1; break; }
+        }
+        int a = i;
+        for (int w = i >> 6;; --w) {
+            std::uint64_t blocked = ~free_word(j, w);
+            if (w == i >> 6) blocked &= (i & 63) == 63 ? ~std::uint64_t{0} : ((std::uint64_t{1} << ((i & 63) + 1)) - 1);
+            if (blocked) { a = w * 64 + 63 - std::countl_zero(blocked) + 1; break; }
+            if (w == 0) { a = 0; break; }
+        }
+        mark.set_row_span(j, a, b);
+        if (spans) spans->push_back({j, a, b});
+        if (a == 0 || b == nx - 1 || j == 0 || j == ny - 1) border = true;
+        // One seed per free run of the neighbouring rows within [a, b].
+        for (int jj : {j - 1, j + 1}) {
+            if (jj < 0 || jj >= ny) continue;
+            for (int w = a >> 6; w <= b >> 6; ++w) {
+                std::uint64_t f = free_word(jj, w);
+                if (w == a >> 6) f &= ~std::uint64_t{0} << (a & 63);
+                if (w == b >> 6 && (b & 63) != 63) f &= (std::uint64_t{1} << ((b & 63) + 1)) - 1;
+                // A run start: free here and not free just below (or at the span's start).
+                std::uint64_t prev = f << 1;
+                if (w > a >> 6) prev |= (free_word(jj, w - 1) >> 63) & 1u;
+                std::uint64_t starts = f & ~prev;
+                while (starts) {
+                    stack.emplace_back(w * 64 + std::countr_zero(starts), jj);
+                    starts &= starts - 1;
+                }
             }
         }
     }
+    return border;
+}
+
+}  // namespace
+
+BitGrid BitGrid::filled() const {
+    // Flood the empty cells from the border; whatever the flood misses is
+    // enclosed by material and counts as filled.
+    BitGrid outside = *this;
+    outside.clear();
+    std::vector<std::pair<int, int>> stack;
+    auto seed = [&](int i, int j) {
+        if (!get(i, j) && !outside.get(i, j)) flood_free(*this, outside, i, j, stack);
+    };
+    for (int i = 0; i < nx_; ++i) { seed(i, 0); seed(i, ny_ - 1); }
+    for (int j = 0; j < ny_; ++j) { seed(0, j); seed(nx_ - 1, j); }
     BitGrid out = *this;
     std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
     for (int j = 0; j < ny_; ++j) {
@@ -233,6 +277,32 @@ BitGrid BitGrid::filled() const {
         }
         out.words_[static_cast<std::size_t>(j) * wpr_ + wpr_ - 1] &= tail;
     }
+    return out;
+}
+
+BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
+    // Only the regions the seeds are in are flooded, so a layer with a few
+    // candidate cells costs a few small floods, not a whole-grid fill.
+    BitGrid out = seeds;
+    out.clear();
+    BitGrid visited = out, inside = out;
+    std::vector<std::pair<int, int>> stack;
+    std::vector<Span> spans;
+    for (int j = 0; j < ny_; ++j) {
+        for (int w = 0; w < wpr_; ++w) {
+            std::uint64_t bits = seeds.words_[static_cast<std::size_t>(j) * wpr_ + w];
+            while (bits) {
+                int i = w * 64 + std::countr_zero(bits);
+                bits &= bits - 1;
+                if (get(i, j) || visited.get(i, j)) continue;
+                spans.clear();
+                if (flood_free(*this, visited, i, j, stack, &spans)) continue;
+                for (const Span& sp : spans) inside.set_row_span(sp.j, sp.a, sp.b);
+            }
+        }
+    }
+    out = seeds;
+    out &= inside;
     return out;
 }
 

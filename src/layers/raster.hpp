@@ -36,6 +36,8 @@ public:
         words_[word_index(i, j)] |= std::uint64_t{1} << (i & 63);
     }
     void clear();
+    void set_row_span(int j, int i0, int i1);  // cells i0..i1 of row j (inclusive, clipped)
+    const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
 
     // Sets every cell whose centre is within width/2 of the segment.
@@ -50,6 +52,9 @@ public:
     BitGrid dilated(double r) const;
     // Cells enclosed by set cells (not reachable from the border) become set.
     BitGrid filled() const;
+    // The cells of `seeds` (same shape) that lie in holes enclosed by set
+    // cells; like filled() & seeds, but floods only where the seeds are.
+    BitGrid enclosed(const BitGrid& seeds) const;
     std::size_t count() const;
     bool any() const;
 
@@ -58,7 +63,6 @@ public:
 
 private:
     std::size_t word_index(int i, int j) const { return static_cast<std::size_t>(j) * wpr_ + (i >> 6); }
-    void set_row_span(int j, int i0, int i1);  // inclusive, clipped
     double ox_ = 0, oy_ = 0, cell_ = 0.1;
     int nx_ = 0, ny_ = 0, wpr_ = 0;
     std::vector<std::uint64_t> words_;

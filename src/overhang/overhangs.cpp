@@ -127,30 +127,37 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     Overhangs out;
     const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-    // The filled footprint of the layer beneath, kept from the previous step.
-    int filled_index = -1;
-    layers::BitGrid filled;
-    auto footprint = [&](int index) {
-        if (index != filled_index) {
-            layers::BitGrid g = proto;
-            layers::draw_layer(g, stack.layers[index]);
-            filled = g.filled();
-            filled_index = index;
+    // The material of the layer beneath, usually the previous step's layer.
+    int drawn_index = -1;
+    layers::BitGrid drawn;
+    auto material = [&](int index) {
+        if (index != drawn_index) {
+            drawn = proto;
+            layers::draw_layer(drawn, stack.layers[index]);
+            drawn_index = index;
         }
-        return filled;
+        return drawn;
     };
     for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
-        layers::BitGrid held = footprint(layer.below).dilated(layer.height * slope + s.resolution / 2);
+        const layers::BitGrid below = material(layer.below);
+        layers::BitGrid held = below.dilated(layer.height * slope + s.resolution / 2);
         layers::BitGrid over = proto;
         layers::BitGrid spanned = proto;
         for (const layers::Segment& sg : layer.segments) {
             bool bridge = gcode::is_bridge(sg.role) && bridge_is_held(sg, held, s.resolution, s.max_bridge);
             (bridge ? spanned : over).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
         }
+        // This layer's material is the next layer's "below".
+        drawn = over;
+        drawn |= spanned;
+        drawn_index = n;
         over.subtract(spanned);
         over.subtract(held);
+        // Over a hole enclosed by the layer beneath (sparse infill under a
+        // skin) is held: the filled footprint counts, not just the beads.
+        if (over.any()) over.subtract(below.enclosed(over));
         if (!over.any()) continue;
         // Drop specks: regions smaller than the minimum area.
         double cell_area = over.cell_area();
