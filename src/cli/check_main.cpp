@@ -1,1 +1,77 @@
-int main() { return 1; }  // replaced by the real program in the next commit
+// scaffold-check: judges whether a G-code file prints, from the G-code alone.
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "check/printability.hpp"
+#include "gcode/error.hpp"
+#include "gcode/reader.hpp"
+
+namespace po = boost::program_options;
+
+int main(int argc, char** argv) {
+    scaffold::check::CheckOptions o;
+    po::options_description opts(
+        "Usage: scaffold-check [options] FILE.gcode\n\n"
+        "Simulates deposition layer by layer and reports what would print in mid-air\n"
+        "(unheld area), support that comes within the XY gap of the model, extrusion\n"
+        "amounts that make no sense, and a print-time estimate. It reads only G-code:\n"
+        "support is what is typed as support (;TYPE:Support material, Cura SUPPORT,\n"
+        "Slic3r '; support material') or, with --original, what the original lacks.\n\n"
+        "Exit status: 0 printable, 1 not printable (reasons listed), 2 bad input or usage.\n\nOptions");
+    opts.add_options()
+        ("help,h", "show this help and exit")
+        ("original", po::value<std::string>(), "the G-code this file was made from: lines not in it are support, and every line of it must appear unchanged and in order")
+        ("json", "print the report as JSON")
+        ("svg", po::value<std::string>(), "draw the worst layers (model grey, support blue, unheld red) into DIR")
+        ("tolerance-mm2", po::value<double>(&o.tolerance_mm2)->default_value(o.tolerance_mm2), "unheld area accepted as raster noise, mm^2")
+        ("overhang-angle", po::value<double>(&o.overhang_angle_deg)->default_value(o.overhang_angle_deg), "steepest self-supporting wall, degrees from vertical")
+        ("xy-gap", po::value<double>(&o.xy_gap)->default_value(o.xy_gap), "least horizontal distance from support to model, mm")
+        ("point-radius", po::value<double>(&o.point_radius)->default_value(o.point_radius), "radius a support contact tip holds, mm")
+        ("bridge-limit", po::value<double>(&o.bridge_limit)->default_value(o.bridge_limit), "longest straight span held at both ends, mm")
+        ("resolution", po::value<double>(&o.resolution)->default_value(o.resolution), "raster cell, mm")
+        ("quiet,q", "print nothing; only the exit status");
+    po::options_description hidden;
+    hidden.add_options()("file", po::value<std::string>());
+    po::options_description all;
+    all.add(opts).add(hidden);
+    po::positional_options_description pos;
+    pos.add("file", 1);
+    po::variables_map vm;
+    try {
+        po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+        po::notify(vm);
+    } catch (const po::error& e) {
+        std::cerr << "scaffold-check: " << e.what() << " (see --help)\n";
+        return 2;
+    }
+    if (vm.count("help")) {
+        std::cout << opts;
+        return 0;
+    }
+    if (!vm.count("file")) {
+        std::cerr << "scaffold-check: no input file given (see --help)\n";
+        return 2;
+    }
+    if (!(o.resolution > 0 && o.resolution <= 2)) {
+        std::cerr << "scaffold-check: --resolution must be in (0, 2] mm\n";
+        return 2;
+    }
+    try {
+        auto out = scaffold::gcode::read_file(vm["file"].as<std::string>());
+        scaffold::gcode::Program original;
+        bool have_original = vm.count("original") > 0;
+        if (have_original) original = scaffold::gcode::read_file(vm["original"].as<std::string>());
+        auto report = scaffold::check::check(out, have_original ? &original : nullptr, o,
+                                             vm.count("svg") ? vm["svg"].as<std::string>() : std::string());
+        if (!vm.count("quiet"))
+            std::cout << (vm.count("json") ? scaffold::check::report_json(report) : scaffold::check::report_text(report));
+        return report.ok() ? 0 : 1;
+    } catch (const scaffold::Error& e) {
+        std::cerr << "scaffold-check: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "scaffold-check: internal error: " << e.what() << "\n";
+        return 2;
+    }
+}

@@ -24,8 +24,19 @@ namespace {
 
 constexpr double kFootMinHeight = 3.0;  // report: feet only under pillars taller than 3 mm
 
-// Tips may come this close to the model: they touch it at the contact anyway.
+// The contact (top two layers of a tip) may come this close to the model.
 constexpr double kTipClearance = 0.2;
+
+// Whether model on `layer` lies within `reach` of the centre and of 16
+// points around the loop of radius rc.
+bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, double reach) {
+    if (obs.disc_clear(layer, x, y, reach)) return false;
+    for (int k = 0; k < 16; ++k) {
+        double a = k * std::numbers::pi / 8;
+        if (obs.disc_clear(layer, x + rc * std::cos(a), y + rc * std::sin(a), reach)) return false;
+    }
+    return true;
+}
 
 // Checks the column from its top layer down; fills base and z0 on success.
 bool descend(Column& c, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
@@ -34,14 +45,18 @@ bool descend(Column& c, int top_layer, const layers::LayerStack& stack, const Ob
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(c, layer.z, s);
-        bool tip = c.top == Top::Contact && layer.z > c.z1 - s.tip_length;
+        // Only the contact itself (the top two layers) may come close to the model.
+        bool tip = c.top == Top::Contact && layer.z > c.z1 - 2 * s.layer_height - 1e-6;
         if (obs.disc_clear(l, c.x1, c.y1, r + (tip ? kTipClearance : s.xy_gap))) {
             first = false;
             continue;
         }
-        // Model under the loop (within the self-supporting reach): stand on it.
-        // Model only beside it: a collision.
-        if (first || obs.disc_clear(l, c.x1, c.y1, r + layer.height * slope * 0.9)) return false;
+        // Stand on the model only where it holds the whole bottom loop (every
+        // point of it within the self-supporting reach); model beside the
+        // column, or under only part of it, is a collision: try elsewhere.
+        if (first || !loop_held(obs, l, c.x1, c.y1, std::max(r - s.support_width / 2, 0.0),
+                                stack.layers[top_layer].height * slope * 0.8))
+            return false;
         c.base = Base::Model;
         c.z0 = layer.z;
         return true;

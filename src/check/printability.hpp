@@ -1,0 +1,68 @@
+#pragma once
+// scaffold-check: an independent printability validator. It sees only
+// G-code (never the planner), simulates deposition layer by layer on bit
+// rasters and applies the rule of METHOD.md: a bead is held by (a) the filled
+// layer beneath within the overhang angle, (b) a straight bridged span held
+// at both ends, or (c) a support contact tip within the point radius.
+#include <string>
+#include <vector>
+
+#include "gcode/program.hpp"
+#include "gcode/settings.hpp"
+
+namespace scaffold::check {
+
+struct CheckOptions {
+    double overhang_angle_deg = 55;
+    double xy_gap = 0.5;
+    double point_radius = 3.5;
+    double bridge_limit = 30;      // mm, for straight spans held at both ends
+    double dangling_end = 1.0;     // mm, unheld ends this short are held
+    double resolution = 0.1;
+    double tolerance_mm2 = 0.5;    // unheld area allowed (raster noise)
+    int worst = 5;                 // worst layers listed
+};
+
+struct LayerIssue {
+    int layer = 0;
+    double z = 0;
+    double area_mm2 = 0;
+    double x = 0, y = 0;           // centre of the issue's cells
+};
+
+struct CheckReport {
+    std::string file;
+    int layers = 0;
+    double unheld_model_mm2 = 0;
+    double unheld_support_mm2 = 0;
+    std::vector<LayerIssue> worst_unheld;
+    double collision_mm2 = 0;
+    std::vector<LayerIssue> worst_collisions;
+    int bad_extrusions = 0;        // implied width out of bounds
+    int e_jumps = 0;               // large E without motion
+    int outside_bed = 0;           // extrusions off the bed
+    std::vector<std::string> extrusion_notes;  // first few, with line numbers
+    bool compared = false;         // --original given
+    bool model_unchanged = true;
+    std::string model_change;      // first difference, when changed
+    double support_filament_mm = 0;
+    double model_filament_mm = 0;
+    double print_time_s = 0;
+    double original_print_time_s = -1;
+    std::vector<std::string> failures;  // reasons for exit 1
+
+    bool ok() const { return failures.empty(); }
+};
+
+// Validates `out`; `original` (may be null) is the input it was made from.
+CheckReport check(const gcode::Program& out, const gcode::Program* original, const CheckOptions& options,
+                  const std::string& svg_dir = "");
+
+// Print time with a trapezoid per move (stop at both ends), using the
+// file's M201/M203/M204 limits where given, else 1000 mm/s^2.
+double estimate_print_time(const gcode::Program& program);
+
+std::string report_text(const CheckReport& r);
+std::string report_json(const CheckReport& r);
+
+}  // namespace scaffold::check
