@@ -79,6 +79,36 @@ void add_issue(std::vector<LayerIssue>& v, LayerIssue issue, int keep) {
     if (static_cast<int>(v.size()) > keep) v.resize(keep);
 }
 
+// Area of the 8-connected regions (beads closer than 0.3 mm joined) of at
+// least `min_area` mm^2.
+double significant_area(const layers::BitGrid& g, double min_area) {
+    layers::BitGrid joined = g.dilated(0.3), seen = g;
+    seen.clear();
+    double total = 0;
+    std::vector<std::pair<int, int>> stack;
+    for (int j = 0; j < g.height(); ++j)
+        for (int i = 0; i < g.width(); ++i) {
+            if (!joined.get(i, j) || seen.get(i, j)) continue;
+            std::size_t cells = 0;
+            stack.assign(1, {i, j});
+            seen.set(i, j);
+            while (!stack.empty()) {
+                auto [a, b] = stack.back();
+                stack.pop_back();
+                cells += g.get(a, b);
+                for (int dj = -1; dj <= 1; ++dj)
+                    for (int di = -1; di <= 1; ++di)
+                        if (joined.get(a + di, b + dj) && !seen.get(a + di, b + dj)) {
+                            seen.set(a + di, b + dj);
+                            stack.emplace_back(a + di, b + dj);
+                        }
+            }
+            double area = static_cast<double>(cells) * g.cell_area();
+            if (area >= min_area) total += area;
+        }
+    return total;
+}
+
 LayerIssue issue_of(const layers::BitGrid& g, int layer, double z) {
     LayerIssue is;
     is.layer = layer;
@@ -346,6 +376,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         r.unheld_support_mm2 += as;
         layers::BitGrid both = unheld_model;
         both |= unheld_support;
+        r.unheld_regions_mm2 += significant_area(both, o.min_region_mm2);
         LayerIssue is = issue_of(both, L, layer.z);
         add_issue(r.worst_unheld, is, o.worst);
         if (!svg_dir.empty()) {
@@ -375,9 +406,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         }
     }
 
-    if (r.unheld_model_mm2 + r.unheld_support_mm2 > o.tolerance_mm2)
-        r.failures.push_back("unheld area " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
-                             fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + ")");
+    if (r.unheld_regions_mm2 > o.tolerance_mm2)
+        r.failures.push_back("unheld area " + fixed(r.unheld_regions_mm2, 2) + " mm^2 in regions of " +
+                             fixed(o.min_region_mm2, 2) + " mm^2 or more (all unheld: model " + fixed(r.unheld_model_mm2, 2) +
+                             ", support " + fixed(r.unheld_support_mm2, 2) + ")");
     if (r.collision_mm2 > 0) r.failures.push_back("support within the XY gap of the model: " + fixed(r.collision_mm2, 2) + " mm^2");
     if (r.bad_extrusions) r.failures.push_back(std::to_string(r.bad_extrusions) + " extrusions with a width out of bounds");
     if (r.e_jumps) r.failures.push_back(std::to_string(r.e_jumps) + " E jumps");
@@ -389,7 +421,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
 std::string report_text(const CheckReport& r) {
     std::string o = r.file + ": " + std::to_string(r.layers) + " layers\n";
     o += "  unheld area: " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
-         fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + ")\n";
+         fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + "); in regions of 1 mm^2 or more: " +
+         fixed(r.unheld_regions_mm2, 2) + " mm^2\n";
     for (const auto& w : r.worst_unheld)
         o += "    layer " + std::to_string(w.layer) + " z " + fixed(w.z, 2) + ": " + fixed(w.area_mm2, 2) +
              " mm^2 around (" + fixed(w.x, 1) + ", " + fixed(w.y, 1) + ")\n";
@@ -432,6 +465,7 @@ std::string report_json(const CheckReport& r) {
     o += "  \"file\": " + json_string(r.file) + ",\n  \"ok\": " + (r.ok() ? "true" : "false") + ",\n";
     o += "  \"layers\": " + std::to_string(r.layers) + ",\n";
     o += "  \"unheld_mm2\": " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 3) + ",\n";
+    o += "  \"unheld_regions_mm2\": " + fixed(r.unheld_regions_mm2, 3) + ",\n";
     o += "  \"unheld_model_mm2\": " + fixed(r.unheld_model_mm2, 3) + ",\n";
     o += "  \"unheld_support_mm2\": " + fixed(r.unheld_support_mm2, 3) + ",\n";
     o += "  \"worst_unheld\": " + issues(r.worst_unheld) + ",\n";

@@ -20,6 +20,8 @@ struct CheckOptions {
     double dangling_end = 1.0;     // mm, unheld ends this short are held
     double resolution = 0.1;
     double tolerance_mm2 = 0.5;    // unheld area allowed (raster noise)
+    double min_region_mm2 = 1.0;   // unheld specks smaller than this do not fail
+                                   // (scaffold skips overhangs under 1 mm^2 too)
     int worst = 5;                 // worst layers listed
 };
 
@@ -35,6 +37,7 @@ struct CheckReport {
     int layers = 0;
     double unheld_model_mm2 = 0;
     double unheld_support_mm2 = 0;
+    double unheld_regions_mm2 = 0;  // in regions of at least min_region_mm2 (what fails)
     std::vector<LayerIssue> worst_unheld;
     double collision_mm2 = 0;
     std::vector<LayerIssue> worst_collisions;

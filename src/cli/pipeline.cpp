@@ -136,7 +136,7 @@ void run(const Request& req, spdlog::logger& log) {
     for (const auto& m : program.moves)
         if (m.kind == gcode::MoveKind::Extrude) model_mm += m.e;
     std::size_t pillars = 0;
-    for (const auto& c : scaffold.columns) pillars += c.base != plan::Base::Bridge;
+    for (const auto& c : scaffold.columns) pillars += c.base == plan::Base::Bed || c.base == plan::Base::Model;
     std::string header = "; scaffold " SCAFFOLD_VERSION " (post-processed supports)\n";
     header += "; scaffold: method = " + std::string(method_name(settings.method)) + ", overhang angle = " +
               fixed(settings.overhang_angle_deg, 1) + " deg, xy gap = " + fixed(settings.xy_gap, 2) +

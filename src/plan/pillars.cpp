@@ -9,8 +9,8 @@ namespace scaffold::plan {
 
 double column_radius_at(const Column& c, double z, const Settings& s) {
     double r = c.radius;
-    if (c.top == Top::Contact && s.tip_length > 0) {
-        double t = (c.z1 - z) / s.tip_length;  // 0 at the contact, 1 where the tip starts
+    if (c.contact_z > 0 && s.tip_length > 0) {
+        double t = (c.contact_z - z) / s.tip_length;  // 0 at the contact, 1 where the tip starts
         if (t < 1) r = s.tip_radius + (c.radius - s.tip_radius) * std::clamp(t, 0.0, 1.0);
     }
     if (c.base == Base::Bed && c.foot_radius > r && s.foot_height > 0 && z < s.foot_height) {
@@ -38,45 +38,103 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
     return true;
 }
 
-// Checks the column from its top layer down; fills base and z0 on success.
-bool descend(Column& c, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
+// Farthest a pillar may wander sideways while stepping around the model.
+constexpr double kMaxWander = 6.0;
+
+struct Step {
+    double x, y, z;
+};
+
+// Walks the column down from its top layer, stepping aside where the model
+// comes too close. Returns the centre per layer (top first), with the base.
+bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
+             std::vector<Step>& path) {
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-    bool first = true;
+    double cx = proto.x1, cy = proto.y1, wander = 0;
+    path.clear();
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
         const layers::Layer& layer = stack.layers[l];
-        double r = column_radius_at(c, layer.z, s);
+        double r = column_radius_at(proto, layer.z, s);
         // Only the contact itself (the top two layers) may come close to the model.
-        bool tip = c.top == Top::Contact && layer.z > c.z1 - 2 * s.layer_height - 1e-6;
-        if (obs.disc_clear(l, c.x1, c.y1, r + (tip ? kTipClearance : s.xy_gap))) {
-            first = false;
+        bool tip = proto.contact_z > 0 && layer.z > proto.contact_z - 2 * s.layer_height - 1e-6;
+        double need = r + (tip ? kTipClearance : s.xy_gap);
+        bool first = path.empty();
+        if (!obs.disc_clear(l, cx, cy, need) && !first) {
+            // Step aside by what the loop below still holds, preferring the
+            // direction with the most room; fixed order breaks ties.
+            // A loop may shift by the self-supporting reach plus half its
+            // bead and still rest on the one below (its centre line is held).
+            double step = 0.8 * (layer.height * slope + s.support_width / 2);
+            int best = -1;
+            for (double margin : {0.4, 0.0}) {
+                for (int k = 0; k < 8 && best < 0; ++k) {
+                    double a = k * std::numbers::pi / 4;
+                    if (obs.disc_clear(l, cx + step * std::cos(a), cy + step * std::sin(a), need + margin)) best = k;
+                }
+                if (best >= 0) break;
+            }
+            if (best >= 0 && wander + step <= kMaxWander) {
+                cx += step * std::cos(best * std::numbers::pi / 4);
+                cy += step * std::sin(best * std::numbers::pi / 4);
+                wander += step;
+            }
+        }
+        if (obs.disc_clear(l, cx, cy, need)) {
+            path.push_back({cx, cy, layer.z});
             continue;
         }
         // Stand on the model only where it holds the whole bottom loop (every
         // point of it within the self-supporting reach); model beside the
         // column, or under only part of it, is a collision: try elsewhere.
-        if (first || !loop_held(obs, l, c.x1, c.y1, std::max(r - s.support_width / 2, 0.0),
+        if (first || !loop_held(obs, l, cx, cy, std::max(r - s.support_width / 2, 0.0),
                                 stack.layers[top_layer].height * slope * 0.8))
             return false;
-        c.base = Base::Model;
-        c.z0 = layer.z;
+        proto.base = Base::Model;
+        proto.z0 = layer.z;
         return true;
     }
-    c.base = Base::Bed;
-    c.z0 = 0;
+    proto.base = Base::Bed;
+    proto.z0 = 0;
     return true;
 }
 
+// The per-layer centres as columns, bottom first: a vertical column while
+// the centre stays, a one-layer slanted column where it steps.
+std::vector<Column> columns_of(const Column& proto, const std::vector<Step>& path) {
+    std::vector<Step> v;  // vertices, bottom up
+    v.push_back({path.back().x, path.back().y, proto.z0});
+    for (std::size_t i = path.size() - 1; i > 0; --i) {
+        const Step &lo = path[i], &hi = path[i - 1];
+        if (lo.x == hi.x && lo.y == hi.y) continue;
+        if (v.back().z != lo.z) v.push_back(lo);
+        v.push_back(hi);
+    }
+    if (v.back().z != path.front().z) v.push_back(path.front());
+    std::vector<Column> out;
+    for (std::size_t i = 0; i + 1 < v.size(); ++i) {
+        Column c = proto;
+        c.x0 = v[i].x; c.y0 = v[i].y; c.z0 = v[i].z;
+        c.x1 = v[i + 1].x; c.y1 = v[i + 1].y; c.z1 = v[i + 1].z;
+        if (i > 0) c.base = Base::Column;
+        if (i + 2 < v.size()) c.top = Top::Column;
+        out.push_back(c);
+    }
+    return out;
+}
+
 // Largest foot and raft that keep the gap on the first layers.
-void fit_foot_and_raft(Column& c, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
+void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
     if (c.base != Base::Bed) return;
-    if (c.z1 - c.z0 > kFootMinHeight) {
+    if (top_z - c.z0 > kFootMinHeight) {
         for (double fr = s.foot_radius; fr > c.radius + 1e-9; fr -= 0.5) {
             c.foot_radius = fr;
             bool ok = true;
             for (int l = 0; l < static_cast<int>(stack.layers.size()) && ok; ++l) {
                 double z = stack.layers[l].z;
                 if (z >= s.foot_height || z > c.z1) continue;
-                ok = obs.disc_clear(l, c.x0, c.y0, column_radius_at(c, z, s) + s.xy_gap);
+                double x, y;
+                column_centre_at(c, z, x, y);
+                ok = obs.disc_clear(l, x, y, column_radius_at(c, z, s) + s.xy_gap);
             }
             if (ok) break;
             c.foot_radius = 0;
@@ -97,28 +155,33 @@ void fit_foot_and_raft(Column& c, const layers::LayerStack& stack, const Obstacl
 
 }  // namespace
 
-std::optional<Column> drop_pillar(double x, double y, int overhang_layer, Top top, const layers::LayerStack& stack,
-                                  const Obstacles& obs, const Settings& s) {
+std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
+                                               const layers::LayerStack& stack, const Obstacles& obs,
+                                               const Settings& s) {
     int top_layer = stack.layers[overhang_layer].below;
     for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
     if (top_layer < 0) return std::nullopt;
-    Column c;
-    c.top = top;
-    c.z1 = stack.layers[top_layer].z;
+    Column proto;
+    proto.top = top;
+    proto.z1 = stack.layers[top_layer].z;
+    if (top == Top::Contact) proto.contact_z = proto.z1;
     // Tall pillars wobble: keep height / diameter within the slenderness limit.
-    c.radius = std::max(s.pillar_radius, c.z1 / (2 * s.slenderness));
+    proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
+    std::vector<Step> path;
     // The point itself first, then rings around it, in a fixed order.
     static constexpr std::array<double, 6> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5};
     for (double d : kRings) {
         int n = d == 0 ? 1 : 8;
         for (int k = 0; k < n; ++k) {
             double a = k * std::numbers::pi / 4;
+            Column c = proto;
             c.x0 = c.x1 = x + d * std::cos(a);
             c.y0 = c.y1 = y + d * std::sin(a);
-            if (!descend(c, top_layer, stack, obs, s)) continue;
+            if (!descend(c, top_layer, stack, obs, s, path)) continue;
             if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
-            fit_foot_and_raft(c, stack, obs, s);
-            return c;
+            std::vector<Column> chain = columns_of(c, path);
+            fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
+            return chain;
         }
     }
     return std::nullopt;
@@ -129,13 +192,15 @@ Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::Layer
     Scaffold out;
     for (std::size_t i = 0; i < points.points.size(); ++i) {
         const auto& p = points.points[i];
-        auto c = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings);
-        if (!c) {
+        auto chain = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings);
+        if (!chain) {
             out.dropped_points.push_back(static_cast<int>(i));
             continue;
         }
-        c->point = static_cast<int>(i);
-        out.columns.push_back(*c);
+        for (Column& c : *chain) {
+            c.point = static_cast<int>(i);
+            out.columns.push_back(c);
+        }
     }
     return out;
 }

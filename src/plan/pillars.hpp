@@ -1,8 +1,10 @@
 #pragma once
-// Vertical pillars: one per support point, straight down to the bed or to
-// the model's top surface, kept clear of the model by the XY gap on every
-// layer (moved a little when the straight column would touch the model).
+// Vertical pillars: one per support point, down to the bed or to the model's
+// top surface, kept clear of the model by the XY gap on every layer. Where
+// the model bulges out below, the pillar steps aside a little per layer (no
+// more than the overhang angle allows), so it becomes a chain of columns.
 #include <optional>
+#include <vector>
 
 #include "layers/layer_stack.hpp"
 #include "overhang/overhangs.hpp"
@@ -12,11 +14,11 @@
 namespace scaffold::plan {
 
 // A pillar whose top layer is the one beneath `overhang_layer` (less
-// --top-gap-layers), near (x, y). nullopt when no clear column exists (or
-// it would stand on the model with --buildplate-only).
-std::optional<Column> drop_pillar(double x, double y, int overhang_layer, Top top,
-                                  const layers::LayerStack& stack, const Obstacles& obstacles,
-                                  const Settings& settings);
+// --top-gap-layers), near (x, y), as columns from the bottom up. nullopt when
+// no clear path exists (or it would stand on the model with --buildplate-only).
+std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
+                                               const layers::LayerStack& stack, const Obstacles& obstacles,
+                                               const Settings& settings);
 
 // --method pillars: a pillar under every support point.
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
@@ -24,5 +26,12 @@ Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::Layer
 
 // Radius of a column at height z (tip taper, foot flare, base radius).
 double column_radius_at(const Column& c, double z, const Settings& settings);
+
+// Centre of a column at height z (linear between its ends).
+inline void column_centre_at(const Column& c, double z, double& x, double& y) {
+    double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;
+    x = c.x0 + (c.x1 - c.x0) * t;
+    y = c.y0 + (c.y1 - c.y0) * t;
+}
 
 }  // namespace scaffold::plan

@@ -8,8 +8,8 @@
 
 namespace scaffold::plan {
 
-enum class Base { Bed, Model, Bridge };
-enum class Top { Contact, Bridge };  // touches the model / ends under a bridge
+enum class Base { Bed, Model, Bridge, Column };  // Column: stacked on the segment below
+enum class Top { Contact, Bridge, Column };      // touches the model / under a bridge / continues above
 
 // A column whose centre moves linearly from bottom to top; vertical when
 // (x0,y0) == (x1,y1). Radius may grow for tall pillars (slenderness).
@@ -20,6 +20,7 @@ struct Column {
     Base base = Base::Bed;
     Top top = Top::Contact;
     int point = -1;                 // index of the support point it holds, or -1
+    double contact_z = 0;           // z of the model contact this column tapers to (0 = none)
     double foot_radius = 0;         // flared foot on the bed (0 = none)
     double raft_size = 0;           // square raft under it on the first layer (0 = none)
 };

@@ -71,6 +71,7 @@ std::string preview_svg(const layers::LayerStack& stack, const plan::Scaffold& s
         for (const auto& [x, z] : left) pts += f(X(x)) + "," + f(Zf(z)) + " ";
         for (auto it = right.rbegin(); it != right.rend(); ++it) pts += f(X(it->first)) + "," + f(Zf(it->second)) + " ";
         const char* colour = c.base == plan::Base::Bridge ? "#e08000" : (c.base == plan::Base::Model ? "#2a9d8f" : "#1d4ed8");
+        if (c.base == plan::Base::Column) colour = "#3b82f6";
         o += "<polygon fill=\"" + std::string(colour) + "\" fill-opacity=\"0.8\" points=\"" + pts + "\"/>\n";
     }
     for (const auto& br : scaffold.bridges)
@@ -86,6 +87,7 @@ std::string preview_svg(const layers::LayerStack& stack, const plan::Scaffold& s
     o += "</g>\n";
     for (const auto& c : scaffold.columns) {
         const char* colour = c.base == plan::Base::Bridge ? "#e08000" : (c.base == plan::Base::Model ? "#2a9d8f" : "#1d4ed8");
+        if (c.base == plan::Base::Column) colour = "#3b82f6";
         o += "<line stroke=\"" + std::string(colour) + "\" stroke-width=\"" + f(2 * c.radius * scale) +
              "\" stroke-linecap=\"round\" stroke-opacity=\"0.6\" x1=\"" + f(X(c.x0)) + "\" y1=\"" + f(Yt(c.y0)) +
              "\" x2=\"" + f(X(c.x1)) + "\" y2=\"" + f(Yt(c.y1)) + "\"/>\n";
