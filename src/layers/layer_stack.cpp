@@ -77,6 +77,7 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     for (std::size_t i = 0; i < stack.layers.size(); ++i) {
         Layer& L = stack.layers[i];
         L.on_bed = i <= lowest || L.z <= min_z + kZEps;
+        L.purge = i < lowest;
         L.below = -1;
         if (!L.on_bed) {
             for (std::size_t j = i; j-- > lowest;) {

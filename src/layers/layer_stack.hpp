@@ -30,6 +30,7 @@ struct Layer {
     std::uint32_t last_extrusion_line = 0;
     bool on_bed = false;       // rests on the bed (first layer, or a purge line)
     int below = -1;            // index of the layer beneath (nearest lower z), -1 = bed
+    bool purge = false;        // printed before the first layer (a purge line): no support here
     std::vector<Segment> segments;
 };
 

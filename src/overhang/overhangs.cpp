@@ -101,6 +101,28 @@ std::vector<std::vector<Cell>> regions(const layers::BitGrid& g, double join) {
     return out;
 }
 
+// Draws the stretches of the segment whose centre line lies outside `held`.
+void draw_unheld_stretches(const layers::Segment& sg, const layers::BitGrid& held, double step, layers::BitGrid& out) {
+    double len = std::hypot(sg.x1 - sg.x0, sg.y1 - sg.y0);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
+    int run = -1;
+    for (int k = 0; k <= steps + 1; ++k) {
+        bool unheld = false;
+        if (k <= steps) {
+            double t = static_cast<double>(k) / steps;
+            double x = sg.x0 + (sg.x1 - sg.x0) * t, y = sg.y0 + (sg.y1 - sg.y0) * t;
+            unheld = !held.get(held.col(x), held.row(y));
+        }
+        if (unheld && run < 0) run = k;
+        if (!unheld && run >= 0) {
+            double ta = static_cast<double>(run) / steps, tb = static_cast<double>(k - 1) / steps;
+            out.draw_segment(sg.x0 + (sg.x1 - sg.x0) * ta, sg.y0 + (sg.y1 - sg.y0) * ta, sg.x0 + (sg.x1 - sg.x0) * tb,
+                             sg.y0 + (sg.y1 - sg.y0) * tb, sg.width);
+            run = -1;
+        }
+    }
+}
+
 // A slicer-marked bridge is fine when every unheld stretch of its centre
 // line is held at both ends and no longer than the bridge limit.
 bool bridge_is_held(const layers::Segment& sg, const layers::BitGrid& held, double step, double max_bridge) {
@@ -147,11 +169,19 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         layers::BitGrid spanned = proto;
         for (const layers::Segment& sg : layer.segments) {
             bool bridge = gcode::is_bridge(sg.role) && bridge_is_held(sg, held, s.resolution, s.max_bridge);
-            (bridge ? spanned : over).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            if (bridge) {
+                spanned.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                continue;
+            }
+            // A bead is held where its centre line is held (METHOD.md's rule,
+            // the one scaffold-check applies): only the unheld stretches of
+            // the centre line make overhang, drawn at the bead's width.
+            draw_unheld_stretches(sg, held, s.resolution, over);
         }
+        layers::BitGrid mine = proto;  // all of this layer, for the next one
+        layers::draw_layer(mine, layer);
         // This layer's material is the next layer's "below".
-        drawn = over;
-        drawn |= spanned;
+        drawn = std::move(mine);
         drawn_index = n;
         over.subtract(spanned);
         over.subtract(held);

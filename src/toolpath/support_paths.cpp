@@ -71,6 +71,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
     const double w = s.support_width;
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
+        if (layer.purge) continue;
         double z = layer.z;
         bool first_layer = layer.on_bed;
         double speed = first_layer ? s.first_layer_speed_mm_s : s.support_speed_mm_s;
