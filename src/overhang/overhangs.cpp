@@ -164,7 +164,9 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
         const layers::BitGrid below = material(layer.below);
-        layers::BitGrid held = below.dilated(layer.height * slope + s.resolution / 2);
+        // Half a cell inside the validator's reach (which adds half a cell), so
+        // raster alignment never decides a borderline bead.
+        layers::BitGrid held = below.dilated(std::max(0.0, layer.height * slope - s.resolution / 2));
         layers::BitGrid over = proto;
         layers::BitGrid spanned = proto;
         for (const layers::Segment& sg : layer.segments) {
@@ -184,7 +186,6 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         drawn = std::move(mine);
         drawn_index = n;
         over.subtract(spanned);
-        over.subtract(held);
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
         if (over.any()) over.subtract(below.enclosed(over));

@@ -169,11 +169,12 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
     std::vector<Step> path;
     // The point itself first, then rings around it, in a fixed order.
-    static constexpr std::array<double, 6> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5};
+    // The tip still holds the point from up to 3 mm away (point radius 3.5).
+    static constexpr std::array<double, 7> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
     for (double d : kRings) {
-        int n = d == 0 ? 1 : 8;
+        int n = d == 0 ? 1 : (d < 1.75 ? 8 : 16);
         for (int k = 0; k < n; ++k) {
-            double a = k * std::numbers::pi / 4;
+            double a = k * 2 * std::numbers::pi / n;
             Column c = proto;
             c.x0 = c.x1 = x + d * std::cos(a);
             c.y0 = c.y1 = y + d * std::sin(a);
