@@ -141,6 +141,7 @@ std::string svg_runs(const layers::BitGrid& g, const char* fill) {
 
 double estimate_print_time(const gcode::Program& p) {
     double accel = 1000, max_xy = 1e9, max_z = 1e9, max_e = 1e9;
+    constexpr double kJunctionDeviation = 0.013;  // mm, Marlin's default
     gcode::Command cmd;
     for (std::size_t i = 0; i < p.lines.size(); ++i) {
         std::string_view t = p.line_text(i);
@@ -154,17 +155,47 @@ double estimate_print_time(const gcode::Program& p) {
             max_e = cmd.get('E', max_e);
         }
     }
-    double total = 0;
+    // Each move is a trapezoid between junction speeds; a junction is as fast
+    // as Marlin's junction deviation allows for the turn (0 around E-only
+    // moves and at the ends), then limited so every move can reach it.
+    struct Seg { double d, v, ux, uy, uz; bool xyz; };
+    std::vector<Seg> segs;
+    segs.reserve(p.moves.size());
     for (const auto& m : p.moves) {
-        double dxy = std::hypot(m.x1 - m.x0, m.y1 - m.y0), dz = std::abs(m.z1 - m.z0);
-        double d = std::hypot(dxy, dz);
-        double cap = dxy > 1e-9 ? max_xy : (dz > 1e-9 ? max_z : max_e);
-        if (d < 1e-9) d = std::abs(m.e);  // E-only moves
+        double dx = m.x1 - m.x0, dy = m.y1 - m.y0, dz = m.z1 - m.z0;
+        double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+        bool xyz = d > 1e-9;
+        double cap = std::hypot(dx, dy) > 1e-9 ? max_xy : (std::abs(dz) > 1e-9 ? max_z : max_e);
+        if (!xyz) d = std::abs(m.e);
         if (d < 1e-9) continue;
         double v = std::min(static_cast<double>(m.feed_mm_per_min) / 60.0, cap);
         if (v <= 0) v = 10;
-        // Trapezoid from rest to rest; a triangle when too short to reach v.
-        total += d >= v * v / accel ? d / v + v / accel : 2 * std::sqrt(d / accel);
+        segs.push_back({d, v, xyz ? dx / d : 0, xyz ? dy / d : 0, xyz ? dz / d : 0, xyz});
+    }
+    std::size_t n = segs.size();
+    std::vector<double> j(n + 1, 0.0);  // j[k]: speed entering move k
+    for (std::size_t k = 1; k < n; ++k) {
+        const Seg &a = segs[k - 1], &b = segs[k];
+        if (!a.xyz || !b.xyz) continue;
+        double cos_theta = -(a.ux * b.ux + a.uy * b.uy + a.uz * b.uz);
+        double vmax = std::min(a.v, b.v);
+        if (cos_theta < -0.999999) { j[k] = vmax; continue; }
+        double sin_half = std::sqrt(std::max(0.0, 0.5 * (1 - cos_theta)));
+        double vj2 = accel * kJunctionDeviation * sin_half / std::max(1e-9, 1 - sin_half);
+        j[k] = std::min(vmax, std::sqrt(vj2));
+    }
+    for (std::size_t k = n; k-- > 0;) j[k] = std::min(j[k], std::sqrt(j[k + 1] * j[k + 1] + 2 * accel * segs[k].d));
+    for (std::size_t k = 0; k < n; ++k) j[k + 1] = std::min(j[k + 1], std::sqrt(j[k] * j[k] + 2 * accel * segs[k].d));
+    double total = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        double d = segs[k].d, v = segs[k].v, a0 = j[k], a1 = j[k + 1];
+        double d_acc = (v * v - a0 * a0) / (2 * accel), d_dec = (v * v - a1 * a1) / (2 * accel);
+        if (d_acc + d_dec <= d) {
+            total += (v - a0) / accel + (v - a1) / accel + (d - d_acc - d_dec) / v;
+        } else {  // never reaches v: a triangle peaking at vp
+            double vp = std::sqrt((2 * accel * d + a0 * a0 + a1 * a1) / 2);
+            total += (vp - a0) / accel + (vp - a1) / accel;
+        }
     }
     return total;
 }

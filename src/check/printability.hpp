@@ -61,8 +61,9 @@ struct CheckReport {
 CheckReport check(const gcode::Program& out, const gcode::Program* original, const CheckOptions& options,
                   const std::string& svg_dir = "");
 
-// Print time with a trapezoid per move (stop at both ends), using the
-// file's M201/M203/M204 limits where given, else 1000 mm/s^2.
+// Print time with a trapezoid per move between junction speeds (Marlin's
+// junction deviation, 0.013 mm), using the file's M201/M203/M204 limits
+// where given, else 1000 mm/s^2.
 double estimate_print_time(const gcode::Program& program);
 
 std::string report_text(const CheckReport& r);

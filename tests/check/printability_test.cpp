@@ -153,4 +153,12 @@ TEST(Check, TrapezoidTimeOfOneMove) {
     // Too short to reach speed: a triangle, 2 * sqrt(d / a).
     auto q = gcode::parse("M204 S1000\nG1 X0 Y0 F6000\nG1 X4 Y0 F6000\n", "t");
     EXPECT_NEAR(check::estimate_print_time(q), 2 * std::sqrt(4.0 / 1000), 1e-6);
+    // Two collinear halves take as long as the whole: no stop between them.
+    auto h = gcode::parse("M204 S1000\nG1 X0 Y0 F6000\nG1 X50 Y0 F6000\nG1 X100 Y0 F6000\n", "t");
+    EXPECT_NEAR(check::estimate_print_time(h), 1.1, 1e-6);
+    // A right-angle corner slows to the junction speed sqrt(a*jd*s/(1-s)), s = sin(45 deg).
+    auto c = gcode::parse("M204 S1000\nG1 X0 Y0 F6000\nG1 X50 Y0 F6000\nG1 X50 Y50 F6000\n", "t");
+    double s45 = std::sqrt(0.5), vj = std::sqrt(1000 * 0.013 * s45 / (1 - s45));
+    double leg = (100 - 0) / 1000.0 + (100 - vj) / 1000.0 + (50 - (1e4 / 2000) - (1e4 - vj * vj) / 2000) / 100;
+    EXPECT_NEAR(check::estimate_print_time(c), 2 * leg, 1e-6);
 }
