@@ -15,6 +15,7 @@
 #include "overhang/overhangs.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "plan/planner.hpp"
 #include "splice/splice.hpp"
 #include "toolpath/preview.hpp"
 #include "toolpath/support_paths.hpp"
@@ -121,9 +122,9 @@ void run(const Request& req, spdlog::logger& log) {
     if (big) log.info("{} support points; planning...", points.points.size());
 
     const plan::Obstacles obstacles(stack, settings);
-    // The bridge planner is not in yet: say so, and plan pillars.
-    if (settings.method == Method::Scaffold) log.warn("--method scaffold: bridge planning not available yet, using pillars");
-    const plan::Scaffold scaffold = plan::plan_pillars(points, stack, obstacles, settings);
+    const plan::Scaffold scaffold = settings.method == Method::Pillars
+                                        ? plan::plan_pillars(points, stack, obstacles, settings)
+                                        : plan::plan_scaffold(points, stack, obstacles, settings);
     time.lap("plan");
     const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings);
     time.lap("toolpath");

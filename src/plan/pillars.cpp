@@ -159,7 +159,8 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                                                const layers::LayerStack& stack, const Obstacles& obs,
                                                const Settings& s) {
     int top_layer = stack.layers[overhang_layer].below;
-    for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
+    if (top == Top::Contact)
+        for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
     proto.top = top;
@@ -172,6 +173,7 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
     static constexpr std::array<double, 7> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
     for (double d : kRings) {
+        if (top == Top::Bridge && d > 0) break;  // a bridge end stays where the bridge is
         int n = d == 0 ? 1 : (d < 1.75 ? 8 : 16);
         for (int k = 0; k < n; ++k) {
             double a = k * 2 * std::numbers::pi / n;
