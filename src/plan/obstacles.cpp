@@ -5,7 +5,8 @@
 
 namespace scaffold::plan {
 
-Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings) {
+Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
+    : inflate(settings.support_width + settings.xy_gap) {
     // The grid reaches past the print so pillars beside it can be tested too.
     layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
     z_.reserve(stack.layers.size());
@@ -17,6 +18,21 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings) 
         layers::draw_layer(g, layer);
         model_.push_back(std::move(g));
     }
+    grown_.resize(model_.size());
+}
+
+bool Obstacles::line_clear(int layer, double x0, double y0, double x1, double y1) const {
+    if (layer < 0 || layer >= layer_count()) return true;
+    layers::BitGrid& g = grown_[layer];
+    if (g.width() == 0) g = model_[layer].dilated(inflate);
+    double len = std::hypot(x1 - x0, y1 - y0);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / (g.cell() * 0.7))));
+    for (int k = 0; k <= steps; ++k) {
+        double t = static_cast<double>(k) / steps;
+        double x = x0 + (x1 - x0) * t, y = y0 + (y1 - y0) * t;
+        if (g.get(g.col(x), g.row(y))) return false;
+    }
+    return true;
 }
 
 namespace {

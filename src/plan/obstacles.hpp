@@ -26,11 +26,17 @@ public:
     int model_below(int layer, double x, double y, double r) const;
     // True when the segment (thick by r) is clear of the model on `layer`.
     bool segment_clear(int layer, double x0, double y0, double x1, double y1, double r) const;
+    // The same for r = inflate (fixed per Obstacles), by cell lookups in the
+    // model grown by that radius (built on first use per layer): cheap enough
+    // to test every bridge candidate.
+    bool line_clear(int layer, double x0, double y0, double x1, double y1) const;
+    double inflate = 0;
 
 private:
     std::vector<double> z_, h_;
     std::vector<int> below_;
     std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
+    mutable std::vector<layers::BitGrid> grown_;  // model_ dilated by `inflate`, lazily
 };
 
 }  // namespace scaffold::plan

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <set>
@@ -21,6 +22,7 @@ namespace {
 constexpr double kThickness = toolpath::kBridgeThickness;
 constexpr double kConnectorRadius = 0.75;  // stays on the 0.9 mm wide bridge bar
 constexpr int kMaxRejects = 40;            // candidates tried per greedy step
+constexpr int kHeightSteps = 3;            // candidate heights: the highest and 2 steps below
 
 // Largest layer top at or below z (layer_tops ascending), or -1.
 double snap_down(const std::vector<double>& tops, double z) {
@@ -47,8 +49,12 @@ Key key_of(const Candidate& c) {
 // active point) looks at the K points in its 10 mm band: K^2 endpoint pairs
 // (those 5..30 mm apart), each with up to K bridge heights, so O(D N K^3)
 // per greedy step, with K bounded by the point density (5 mm grid), not N.
+// Whether a bridge bar at zb between the two points keeps the gap from the
+// model on both of its layers (true without a model).
+using BarClear = std::function<bool(double x0, double y0, double x1, double y1, double zb)>;
+
 std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std::vector<double>& tops, const Settings& s,
-                                   const std::set<Key>& rejected, std::size_t keep) {
+                                   const std::set<Key>& rejected, std::size_t keep, const BarClear& clear) {
     std::vector<Candidate> best;  // sorted by score, descending
     const std::size_t n = active.size();
     if (n < 3) return best;
@@ -87,8 +93,16 @@ std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std:
                     if (len < s.bridge_min_length || zs.size() < 3) continue;
                     // For each count c, the highest bridge that has c points at
                     // least the drop above its top.
+                    // No height can beat the kept candidates: skip the pair.
+                    double bound = static_cast<double>(zs.size() - 2) * (zs.front().first - s.bridge_min_drop) - len;
+                    if (bound <= worst()) continue;
                     for (std::size_t c = 3; c <= zs.size(); ++c) {
-                        double zb = snap_down(tops, zs[c - 1].first - s.bridge_min_drop - kThickness);
+                      // Equal heights give the same bridges: take the last of a run.
+                      if (c < zs.size() && zs[c].first == zs[c - 1].first) continue;
+                      // The highest height first, then every step below it.
+                      double z_hi = zs[c - 1].first - s.bridge_min_drop - kThickness;
+                      for (int drop = 0; drop < kHeightSteps; ++drop) {
+                        double zb = snap_down(tops, z_hi - drop * s.bridge_height_step);
                         if (zb <= 0) break;
                         int carried = 0;
                         double l_max = 0;
@@ -110,6 +124,7 @@ std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std:
                         cand.y1 = pu[pe] * uy + v0 * ux;
                         cand.z = zb;
                         if (rejected.count(key_of(cand))) continue;
+                        if (clear && !clear(cand.x0, cand.y0, cand.x1, cand.y1, zb)) continue;
                         cand.gain = gain;
                         cand.score = score;
                         cand.l_max = l_max;
@@ -124,6 +139,7 @@ std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std:
                                                    [](double sc, const Candidate& b) { return sc > b.score; });
                         best.insert(at, std::move(cand));
                         if (best.size() > keep) best.pop_back();
+                      }
                     }
                 }
             }
@@ -132,24 +148,32 @@ std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std:
     return best;
 }
 
-// The layer whose bottom is at z (the first layer above z), or -1.
-int layer_above(const layers::LayerStack& stack, double z) {
-    int best = -1;
-    for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i) {
-        const auto& l = stack.layers[i];
-        if (l.purge || l.z <= z + 1e-6) continue;
-        if (best < 0 || l.z < stack.layers[best].z) best = i;
+// Layers by z (purge lines left out), to find the layer above a height.
+class LayersByZ {
+public:
+    explicit LayersByZ(const layers::LayerStack& stack) {
+        for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
+            if (!stack.layers[i].purge) by_z_.emplace_back(stack.layers[i].z, i);
+        std::stable_sort(by_z_.begin(), by_z_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     }
-    return best;
-}
+    // The layer whose bottom is at z (the first layer above z), or -1.
+    int above(double z) const {
+        auto it = std::upper_bound(by_z_.begin(), by_z_.end(), z + 1e-6,
+                                   [](double v, const std::pair<double, int>& e) { return v < e.first; });
+        return it == by_z_.end() ? -1 : it->second;
+    }
+
+private:
+    std::vector<std::pair<double, int>> by_z_;
+};
 
 // The top layer of the support under an active point: beneath the
 // overhang (less the top gap) for a support point, the bridge's own layer
 // beneath for a bridge end.
 int top_layer_of(const Active& a, const overhang::SupportPoints& pts, const layers::LayerStack& stack,
-                 const Settings& s) {
+                 const LayersByZ& by_z, const Settings& s) {
     if (a.point < 0) {
-        int above = layer_above(stack, a.z);
+        int above = by_z.above(a.z);
         return above < 0 ? -1 : stack.layers[above].below;
     }
     int t = stack.layers[pts.points[a.point].layer].below;
@@ -189,7 +213,7 @@ std::optional<Column> connector(const Candidate& b, const Active& a, int top_lay
 }  // namespace
 
 Candidate best_bridge(const std::vector<Active>& active, const std::vector<double>& layer_tops, const Settings& s) {
-    auto top = top_bridges(active, layer_tops, s, {}, 1);
+    auto top = top_bridges(active, layer_tops, s, {}, 1, nullptr);
     return top.empty() ? Candidate{} : top.front();
 }
 
@@ -202,21 +226,33 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     std::sort(tops.begin(), tops.end());
     tops.erase(std::unique(tops.begin(), tops.end()), tops.end());
 
+    const LayersByZ by_z(stack);
     std::vector<Active> active;
     for (std::size_t i = 0; i < points.points.size(); ++i)
         active.push_back({points.points[i].x, points.points[i].y, points.points[i].z, static_cast<int>(i)});
 
     // Greedy (METHOD.md step 4): take the best bridge that can really be
     // built (clear of the model, ends standing), snap, repeat.
+    // A bar is printed on the two layers above zb, reaching into the pillar
+    // tops at both ends.
+    const BarClear bar_clear = [&](double x0, double y0, double x1, double y1, double zb) {
+        int first = by_z.above(zb);
+        int second = first < 0 ? -1 : by_z.above(stack.layers[first].z);
+        if (first < 0 || second < 0) return false;
+        double len = std::hypot(x1 - x0, y1 - y0);
+        double ex = (x1 - x0) / len * s.pillar_radius * 0.5, ey = (y1 - y0) / len * s.pillar_radius * 0.5;
+        return obs.line_clear(first, x0 - ex, y0 - ey, x1 + ex, y1 + ey) &&
+               obs.line_clear(second, x0 - ex, y0 - ey, x1 + ex, y1 + ey);
+    };
     std::set<Key> rejected;
-    int rejects_left = kMaxRejects * 8;
+    int rejects_left = 2 * kMaxRejects;  // bounded work when the model is in the way everywhere
     while (rejects_left > 0) {
-        std::vector<Candidate> cands = top_bridges(active, tops, s, rejected, kMaxRejects);
+        std::vector<Candidate> cands = top_bridges(active, tops, s, rejected, kMaxRejects, bar_clear);
         if (cands.empty()) break;
         bool placed = false;
         for (const Candidate& c : cands) {
-        int first = layer_above(stack, c.z);
-        int second = first < 0 ? -1 : layer_above(stack, stack.layers[first].z);
+        int first = by_z.above(c.z);
+        int second = first < 0 ? -1 : by_z.above(stack.layers[first].z);
         bool ok = first >= 0 && second >= 0;
         double ex = 0, ey = 0;
         if (ok) {
@@ -230,7 +266,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         std::vector<int> carried;
         if (ok) {
             for (int ai : c.carried) {
-                auto col = connector(c, active[ai], top_layer_of(active[ai], points, stack, s), stack, obs, s);
+                auto col = connector(c, active[ai], top_layer_of(active[ai], points, stack, by_z, s), stack, obs, s);
                 if (!col) continue;
                 connectors.push_back(*col);
                 carried.push_back(ai);
@@ -263,7 +299,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
 
     // Everything still active stands on a pillar.
     for (const Active& a : active) {
-        int overhang_layer = a.point >= 0 ? points.points[a.point].layer : layer_above(stack, a.z);
+        int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
         auto chain = overhang_layer < 0 ? std::nullopt
                                         : drop_pillar(a.x, a.y, overhang_layer, a.point >= 0 ? Top::Contact : Top::Bridge,
                                                       stack, obs, s);
