@@ -126,7 +126,7 @@ void run(const Request& req, spdlog::logger& log) {
                                         ? plan::plan_pillars(points, stack, obstacles, settings)
                                         : plan::plan_scaffold(points, stack, obstacles, settings);
     time.lap("plan");
-    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings);
+    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())
         write_text(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));

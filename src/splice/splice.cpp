@@ -118,7 +118,7 @@ private:
     // rises before and descends after the XY move, never dragging down.
     void travel(double x, double y, double z) {
         double d = std::hypot(x - x_, y - y_);
-        if (s_.retract_lift > 0 && d > s_.retract_before_travel) move_z(std::max(z_, z) + s_.retract_lift);
+        if (s_.retract_lift > 0 && d > s_.retract_before_travel && retracted_) move_z(std::max(z_, z) + s_.retract_lift);
         else if (z > z_ + 1e-6) move_z(z);
         if (d > 1e-6) {
             out_ += "G1";
@@ -144,7 +144,7 @@ private:
         if (p.points.size() < 2) return;
         const auto& a = p.points.front();
         double d = std::hypot(a.x - x_, a.y - y_);
-        if (d > s_.retract_before_travel) retract();
+        if (d > s_.retract_before_travel && p.retract) retract();
         travel(a.x, a.y, layer_.z);
         unretract();
         if (p.bridge && saved_.fan < 255) {

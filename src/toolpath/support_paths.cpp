@@ -66,7 +66,8 @@ void order_paths(std::vector<Path>& paths) {
 
 }  // namespace
 
-SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s) {
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s,
+                        const plan::Obstacles* obstacles) {
     SupportPaths out;
     const double w = s.support_width;
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
@@ -120,6 +121,11 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         }
         if (lp.paths.empty()) continue;
         order_paths(lp.paths);
+        if (obstacles)
+            for (std::size_t i = 1; i < lp.paths.size(); ++i) {
+                const Point &a = lp.paths[i - 1].points.back(), &b = lp.paths[i].points.front();
+                lp.paths[i].retract = !obstacles->segment_clear(l, a.x, a.y, b.x, b.y, s.support_width);
+            }
         out.layers.push_back(std::move(lp));
     }
     return out;

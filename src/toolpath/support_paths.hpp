@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "layers/layer_stack.hpp"
+#include "plan/obstacles.hpp"
 #include "plan/scaffold.hpp"
 
 namespace scaffold::toolpath {
@@ -21,6 +22,10 @@ struct Path {
     double speed_mm_s = 60;
     PathKind kind = PathKind::Pillar;
     bool bridge = false;        // print with bridge settings (fan on)
+    // Retract for the travel to this path: false when the travel from the
+    // previous path stays clear of the model (like the slicers' "only retract
+    // when crossing perimeters"; oozing onto support does no harm).
+    bool retract = true;
 };
 
 struct LayerPaths {
@@ -35,7 +40,10 @@ struct SupportPaths {
 // A bridge bar is two layers thick, starting at Bridge::z.
 inline constexpr double kBridgeThickness = 0.4;
 
-SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings);
+// `obstacles` (optional) lets travels between support paths skip retraction
+// where they cross no model.
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
+                        const plan::Obstacles* obstacles = nullptr);
 
 // A closed loop whose outer edge is at radius r (centre line r - width/2).
 std::vector<Point> loop(double cx, double cy, double r, double width);
