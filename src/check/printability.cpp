@@ -123,19 +123,6 @@ LayerIssue issue_of(const layers::BitGrid& g, int layer, double z) {
     return is;
 }
 
-std::string svg_runs(const layers::BitGrid& g, const char* fill) {
-    std::string o = std::string("<g fill=\"") + fill + "\">\n";
-    for (int j = 0; j < g.height(); ++j)
-        for (int i = 0; i < g.width();) {
-            if (!g.get(i, j)) { ++i; continue; }
-            int k = i;
-            while (k < g.width() && g.get(k, j)) ++k;
-            o += "<rect x=\"" + std::to_string(i) + "\" y=\"" + std::to_string(g.height() - 1 - j) + "\" width=\"" +
-                 std::to_string(k - i) + "\" height=\"1\"/>\n";
-            i = k;
-        }
-    return o + "</g>\n";
-}
 
 }  // namespace
 
@@ -429,7 +416,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                             "\" height=\"" + std::to_string(proto.height() * 3) + "\">\n";
             s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<!-- layer " + std::to_string(L) + " z " +
                  fixed(stack.layers[L].z, 2) + ": grey model, blue support, red unheld -->\n";
-            s += svg_runs(g.model, "#b0b0b0") + svg_runs(g.support, "#1d4ed8") + svg_runs(unheld, "#d62828");
+            s += layers::svg_cell_runs(g.model, "#b0b0b0") + layers::svg_cell_runs(g.support, "#1d4ed8") + layers::svg_cell_runs(unheld, "#d62828");
             s += "</svg>\n";
             char name[40];
             std::snprintf(name, sizeof name, "/unheld-layer-%04d.svg", L);

@@ -311,6 +311,20 @@ BitGrid make_grid(const LayerStack& stack, double cell, double margin) {
     return BitGrid(b.min_x - margin, b.min_y - margin, b.max_x + margin, b.max_y + margin, cell);
 }
 
+std::string svg_cell_runs(const BitGrid& g, const char* fill) {
+    std::string o = std::string("<g fill=\"") + fill + "\">\n";
+    for (int j = 0; j < g.height(); ++j)
+        for (int i = 0; i < g.width();) {
+            if (!g.get(i, j)) { ++i; continue; }
+            int k = i;
+            while (k < g.width() && g.get(k, j)) ++k;
+            o += "<rect x=\"" + std::to_string(i) + "\" y=\"" + std::to_string(g.height() - 1 - j) + "\" width=\"" +
+                 std::to_string(k - i) + "\" height=\"1\"/>\n";
+            i = k;
+        }
+    return o + "</g>\n";
+}
+
 void draw_layer(BitGrid& grid, const Layer& layer) {
     for (const Segment& s : layer.segments) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width);
 }

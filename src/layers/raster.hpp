@@ -3,6 +3,7 @@
 // into it as thick lines of their real width. Memory follows the print's
 // bounding box, not the bed.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -70,7 +71,11 @@ private:
 
 // The grid for a stack: its bounds padded by `margin` mm on every side.
 BitGrid make_grid(const LayerStack& stack, double cell, double margin);
-// Draws every segment of the layer (optionally skipping some roles).
+// Draws every segment of the layer.
 void draw_layer(BitGrid& grid, const Layer& layer);
+
+// The set cells as SVG: one <rect> per horizontal run, in cell units with
+// y pointing up (row 0 at the bottom), inside a <g fill="...">.
+std::string svg_cell_runs(const BitGrid& grid, const char* fill);
 
 }  // namespace scaffold::layers

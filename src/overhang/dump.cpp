@@ -21,20 +21,6 @@ void save(const std::string& path, const std::string& text) {
     if (!out || !(out << text) || !out.flush()) throw Error(path, 0, "cannot write this file");
 }
 
-// Set cells as one <rect> per horizontal run, in grid coordinates.
-std::string runs(const layers::BitGrid& g, const char* fill) {
-    std::string o = std::string("<g fill=\"") + fill + "\">\n";
-    for (int j = 0; j < g.height(); ++j)
-        for (int i = 0; i < g.width();) {
-            if (!g.get(i, j)) { ++i; continue; }
-            int k = i;
-            while (k < g.width() && g.get(k, j)) ++k;
-            o += "<rect x=\"" + std::to_string(i) + "\" y=\"" + std::to_string(g.height() - 1 - j) + "\" width=\"" +
-                 std::to_string(k - i) + "\" height=\"1\"/>\n";
-            i = k;
-        }
-    return o + "</g>\n";
-}
 
 }  // namespace
 
@@ -67,9 +53,9 @@ void write_layer_svgs(const std::string& dir, const Overhangs& overhangs, const 
                         std::to_string(g.height() * 4) + "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
         o += "<!-- layer " + std::to_string(ol.layer) + " z " + f(layer.z) + ": grey = layer below, blue = this layer, "
              "red = overhang, black = support points (circle: point radius) -->\n";
-        o += runs(below, "#b0b0b0");
-        o += runs(here, "#9ec5fe") ;
-        o += runs(g, "#d62828");
+        o += layers::svg_cell_runs(below, "#b0b0b0");
+        o += layers::svg_cell_runs(here, "#9ec5fe");
+        o += layers::svg_cell_runs(g, "#d62828");
         for (const SupportPoint& p : points.points) {
             if (p.layer != ol.layer) continue;
             double cx = (p.x - g.origin_x()) / g.cell(), cy = g.height() - (p.y - g.origin_y()) / g.cell();
