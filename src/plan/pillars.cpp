@@ -56,7 +56,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(proto, layer.z, s);
         // Only the contact itself (the top two layers) may come close to the model.
-        bool tip = proto.contact_z > 0 && layer.z > proto.contact_z - 2 * s.layer_height + 1e-6;
+        bool tip = proto.top == Top::Contact && layer.z > proto.contact_z - 2 * s.layer_height + 1e-6;
         double need = r + (tip ? kTipClearance : s.xy_gap);
         bool first = path.empty();
         if (!obs.disc_clear(l, cx, cy, need) && !first) {
@@ -165,10 +165,18 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     Column proto;
     proto.top = top;
     proto.z1 = stack.layers[top_layer].z;
-    if (top == Top::Contact) proto.contact_z = proto.z1;
+    // Tapered top: at a contact (the tip), and under a bridge end too, which
+    // the narrow top holds as well and which then fits closer to the model.
+    proto.contact_z = proto.z1;
     // Tall pillars wobble: keep height / diameter within the slenderness limit.
     proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
     std::vector<Step> path;
+    // A bridge end right over the model's top rests on it: no column needed.
+    if (top == Top::Bridge) {
+        const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
+        if (loop_held(obs, top_layer, x, y, s.tip_radius, stack.layers[top_layer].height * slope * 0.8))
+            return std::vector<Column>{};
+    }
     // The point itself first, then rings around it, in a fixed order.
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
     static constexpr std::array<double, 7> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};

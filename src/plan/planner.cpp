@@ -181,19 +181,19 @@ int top_layer_of(const Active& a, const overhang::SupportPoints& pts, const laye
     return t;
 }
 
-// A slanted column from the bridge top up to the active point; nullopt if
-// it would come within the gap of the model on some layer.
-std::optional<Column> connector(const Candidate& b, const Active& a, int top_layer, const layers::LayerStack& stack,
-                                const Obstacles& obs, const Settings& s) {
+// A slanted column from the bridge top up to (tx, ty) under the active
+// point; nullopt if it would come within the gap of the model on some layer.
+std::optional<Column> connector_to(const Candidate& b, const Active& a, double tx, double ty, int top_layer,
+                                   const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
     if (top_layer < 0) return std::nullopt;
     double dx = b.x1 - b.x0, dy = b.y1 - b.y0, len2 = dx * dx + dy * dy;
-    double t = len2 > 0 ? std::clamp(((a.x - b.x0) * dx + (a.y - b.y0) * dy) / len2, 0.0, 1.0) : 0;
+    double t = len2 > 0 ? std::clamp(((tx - b.x0) * dx + (ty - b.y0) * dy) / len2, 0.0, 1.0) : 0;
     Column c;
     c.x0 = b.x0 + dx * t;
     c.y0 = b.y0 + dy * t;
     c.z0 = b.z + kThickness;
-    c.x1 = a.x;
-    c.y1 = a.y;
+    c.x1 = tx;
+    c.y1 = ty;
     c.z1 = stack.layers[top_layer].z;
     c.radius = kConnectorRadius;
     c.base = Base::Bridge;
@@ -201,6 +201,7 @@ std::optional<Column> connector(const Candidate& b, const Active& a, int top_lay
     c.contact_z = a.point >= 0 ? c.z1 : 0;
     c.point = a.point;
     if (c.z1 <= c.z0 + 1e-6) return std::nullopt;
+    if (std::hypot(c.x1 - c.x0, c.y1 - c.y0) > lean_per_mm(s) * (c.z1 - c.z0)) return std::nullopt;
     for (int l = top_layer; l >= 0 && stack.layers[l].z > c.z0 + 1e-6; l = stack.layers[l].below) {
         double z = stack.layers[l].z, x, y;
         column_centre_at(c, z, x, y);
@@ -208,6 +209,22 @@ std::optional<Column> connector(const Candidate& b, const Active& a, int top_lay
         if (!obs.disc_clear(l, x, y, column_radius_at(c, z, s) + (tip ? 0.2 : s.xy_gap))) return std::nullopt;
     }
     return c;
+}
+
+// The connector to the point itself, or, for a support point whose straight
+// connector meets the model, to a tip up to 1.5 mm away (it still holds the
+// point: the point radius is 3.5 mm). Bridge ends must be met exactly.
+std::optional<Column> connector(const Candidate& b, const Active& a, int top_layer, const layers::LayerStack& stack,
+                                const Obstacles& obs, const Settings& s) {
+    if (auto c = connector_to(b, a, a.x, a.y, top_layer, stack, obs, s)) return c;
+    if (a.point < 0) return std::nullopt;
+    for (double d : {0.5, 1.0, 1.5})
+        for (int k = 0; k < 8; ++k) {
+            double ang = k * std::numbers::pi / 4;
+            if (auto c = connector_to(b, a, a.x + d * std::cos(ang), a.y + d * std::sin(ang), top_layer, stack, obs, s))
+                return c;
+        }
+    return std::nullopt;
 }
 
 }  // namespace
