@@ -191,6 +191,7 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
             if (!descend(c, top_layer, stack, obs, s, path)) continue;
             if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
             std::vector<Column> chain = columns_of(c, path);
+            if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
             fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
             return chain;
         }
