@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "check/printability.hpp"
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
@@ -153,11 +154,20 @@ void run(const Request& req, spdlog::logger& log) {
     gcode::write_output(req.output, program, std::move(edits));
     time.lap("write");
 
+    // Print-time change, by the validator's estimate; the written file is
+    // read back for it, so only when that is cheap.
+    std::string time_change;
+    if (req.output != "-" && program.text.size() < 50'000'000) {
+        double before = check::estimate_print_time(program);
+        double after = check::estimate_print_time(gcode::read_file(req.output));
+        time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
+                                  before > 0 ? 100 * (after - before) / before : 0.0);
+    }
     double grams = filament_volume_cm3(spliced.filament_mm, settings.filament_diameter) * 1.24;  // PLA density
-    log.info("{} support points, {} bridges, {} pillars{}; support filament {:.1f} mm ({:.1f} g, {:.1f} % of the model)",
+    log.info("{} support points, {} bridges, {} pillars{}; support filament {:.1f} mm ({:.1f} g, {:.1f} % of the model){}",
              points.points.size(), scaffold.bridges.size(), pillars,
              scaffold.dropped_points.empty() ? "" : fmt::format(", {} points dropped", scaffold.dropped_points.size()),
-             spliced.filament_mm, grams, model_mm > 0 ? 100 * spliced.filament_mm / model_mm : 0.0);
+             spliced.filament_mm, grams, model_mm > 0 ? 100 * spliced.filament_mm / model_mm : 0.0, time_change);
     for (const auto& [name, s] : time.stages) log.debug("stage {}: {:.1f} ms", name, s * 1000);
 
     if (auto it = req.files.find("report"); it != req.files.end()) {
