@@ -123,24 +123,60 @@ void draw_unheld_stretches(const layers::Segment& sg, const layers::BitGrid& hel
     }
 }
 
-// A slicer-marked bridge is fine when every unheld stretch of its centre
-// line is held at both ends and no longer than the bridge limit.
-bool bridge_is_held(const layers::Segment& sg, const layers::BitGrid& held, double step, double max_bridge) {
-    double len = std::hypot(sg.x1 - sg.x0, sg.y1 - sg.y0);
-    int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
-    int run = -1;
-    for (int k = 0; k <= steps; ++k) {
-        double t = static_cast<double>(k) / steps;
-        double x = sg.x0 + (sg.x1 - sg.x0) * t, y = sg.y0 + (sg.y1 - sg.y0) * t;
-        bool unheld = !held.get(held.col(x), held.row(y));
-        if (unheld && (k == 0 || k == steps)) return false;  // a dangling end
-        if (unheld && run < 0) run = k;
-        if (!unheld && run >= 0) {
-            if ((k - run) * len / steps > max_bridge) return false;
-            run = -1;
+// Consecutive moves of one extrusion path turning by less than this make
+// one straight piece, as in METHOD.md's rule (b) and scaffold-check.
+constexpr double kStraightDeg = 10;
+
+// Does segment b continue segment a as one straight piece of one path?
+bool continues_straight(const layers::Segment& a, const layers::Segment& b) {
+    if (b.move != a.move + 1) return false;
+    if (std::abs(b.x0 - a.x1) > 1e-3f || std::abs(b.y0 - a.y1) > 1e-3f) return false;
+    double adx = a.x1 - a.x0, ady = a.y1 - a.y0, bdx = b.x1 - b.x0, bdy = b.y1 - b.y0;
+    double la = std::hypot(adx, ady), lb = std::hypot(bdx, bdy);
+    if (la <= 0 || lb <= 0) return false;
+    return (adx * bdx + ady * bdy) / (la * lb) >= std::cos(kStraightDeg * std::numbers::pi / 180);
+}
+
+struct Sample {
+    double x, y, s;  // centre-line position and arc length along the piece
+    float width;
+    bool held;
+};
+
+// Polyline through samples [a, b] at their beads' width.
+void draw_samples(const std::vector<Sample>& p, std::size_t a, std::size_t b, layers::BitGrid& out) {
+    if (a == b) out.draw_disc(p[a].x, p[a].y, p[a].width / 2);
+    for (std::size_t k = a + 1; k <= b; ++k) out.draw_segment(p[k - 1].x, p[k - 1].y, p[k].x, p[k].y, p[k].width);
+}
+
+// Slicer-marked bridge segments [first, last] (one straight piece of one
+// path): an unheld run of the centre line held on both sides and no longer
+// than the bridge limit is spanned; a dangling or too long run is overhang.
+void bridge_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                  const layers::BitGrid& held, double step, double max_bridge, layers::BitGrid& over,
+                  layers::BitGrid& spanned, std::vector<Sample>& p) {
+    p.clear();
+    for (std::size_t k = first; k <= last; ++k) {
+        const layers::Segment& sg = segs[k];
+        double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
+        double s0 = p.empty() ? 0 : p.back().s;
+        int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+        for (int i = p.empty() ? 0 : 1; i <= n; ++i) {
+            double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
+            p.push_back({x, y, s0 + len * t, sg.width, held.get(held.col(x), held.row(y))});
         }
     }
-    return true;
+    for (std::size_t i = 0; i < p.size();) {
+        if (p[i].held) { ++i; continue; }
+        std::size_t j = i;
+        while (j < p.size() && !p[j].held) ++j;
+        bool bounded = i > 0 && j < p.size();
+        if (bounded && p[j].s - p[i - 1].s <= max_bridge)
+            draw_samples(p, i - 1, j, spanned);
+        else
+            draw_samples(p, i, j - 1, over);
+        i = j;
+    }
 }
 
 }  // namespace
@@ -160,6 +196,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         }
         return drawn;
     };
+    std::vector<Sample> samples;
     for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
@@ -169,16 +206,23 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         layers::BitGrid held = below.dilated(std::max(0.0, layer.height * slope - s.resolution / 2));
         layers::BitGrid over = proto;
         layers::BitGrid spanned = proto;
-        for (const layers::Segment& sg : layer.segments) {
-            bool bridge = gcode::is_bridge(sg.role) && bridge_is_held(sg, held, s.resolution, s.max_bridge);
-            if (bridge) {
-                spanned.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        const auto& segs = layer.segments;
+        for (std::size_t k = 0; k < segs.size(); ++k) {
+            if (gcode::is_bridge(segs[k].role)) {
+                // The span is the whole straight piece, not one move: slicers
+                // split bridge lines and overhang perimeters into many moves.
+                std::size_t last = k;
+                while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) &&
+                       continues_straight(segs[last], segs[last + 1]))
+                    ++last;
+                bridge_piece(segs, k, last, held, s.resolution, s.max_bridge, over, spanned, samples);
+                k = last;
                 continue;
             }
             // A bead is held where its centre line is held (METHOD.md's rule,
             // the one scaffold-check applies): only the unheld stretches of
             // the centre line make overhang, drawn at the bead's width.
-            draw_unheld_stretches(sg, held, s.resolution, over);
+            draw_unheld_stretches(segs[k], held, s.resolution, over);
         }
         layers::BitGrid mine = proto;  // all of this layer, for the next one
         layers::draw_layer(mine, layer);
