@@ -51,6 +51,7 @@ public:
         y_ = saved.y;
         z_ = saved.z;
         retracted_ = saved.retracted();
+        fan_ = saved.fan;
     }
 
     std::string write(const std::vector<toolpath::Path>& paths) {
@@ -147,8 +148,10 @@ private:
         if (d > s_.retract_before_travel && p.retract) retract();
         travel(a.x, a.y, layer_.z);
         unretract();
-        if (p.bridge && saved_.fan < 255) {
-            out_ += "M106 S" + std::to_string(static_cast<int>(std::lround(2.55 * s_.bridge_fan_percent))) + "\n";
+        int bridge_fan = static_cast<int>(std::lround(2.55 * s_.bridge_fan_percent));
+        if (p.bridge && fan_ != bridge_fan) {
+            out_ += "M106 S" + std::to_string(bridge_fan) + "\n";
+            fan_ = bridge_fan;
             fan_changed_ = true;
         }
         double feed = p.speed_mm_s * 60;
@@ -180,6 +183,7 @@ private:
     gcode::Dialect dialect_;
     double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
     bool retracted_ = false, fan_changed_ = false;
+    int fan_ = 0;
     double filament_ = 0, length_ = 0;
     std::string out_;
 };
