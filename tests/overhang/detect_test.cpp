@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "check/printability.hpp"
 #include "gcode/reader.hpp"
 #include "layers/layer_stack.hpp"
 #include "overhang/overhangs.hpp"
@@ -44,13 +45,55 @@ void expect_covered(const Found& f, double radius) {
     }
 }
 
-SynthGcode chamfer(double offset_per_layer) {
-    SynthGcode g;
+SynthGcode chamfer(double offset_per_layer, double layer_height = 0.2) {
+    SynthGcode g(layer_height);
     for (int l = 1; l <= 20; ++l) {
-        g.layer(0.2 * l);
+        g.layer(layer_height * l);
         g.filled_rect(100, 100, 110 + offset_per_layer * (l - 1), 112);
     }
     return g;
+}
+
+double offset_for(double angle_deg, double layer_height) {
+    return layer_height * std::tan(angle_deg * std::numbers::pi / 180);
+}
+
+// Two towers with a gap from x = 105 to x = 105 + gap, then a deck over both
+// whose first layer is `lines` of the given role, drawn by `line`.
+template <class Line>
+SynthGcode towers_and_deck(double gap, const char* role, Line line) {
+    SynthGcode g;
+    const double x1 = 110 + gap;
+    for (int l = 1; l <= 24; ++l) {
+        g.layer(0.2 * l);
+        if (l <= 20) {
+            g.filled_rect(100, 100, 105, 110);
+            g.filled_rect(105 + gap, 100, x1, 110);
+        } else if (l == 21) {
+            g.type(role);
+            for (double y = 100.3; y < 109.95; y += 0.4) line(g, 100.3, x1 - 0.3, y);
+        } else {
+            g.type("Solid infill");
+            g.filled_rect(100, 100, x1, 110);
+        }
+    }
+    return g;
+}
+
+// A straight line printed as many short moves, as slicers write bridges
+// that cross other paths or were fitted from arcs.
+void line_in_moves(SynthGcode& g, double xa, double xb, double y) {
+    g.travel(xa, y);
+    for (double x = xa + 0.7; x < xb; x += 0.7) g.extrude(x, y);
+    g.extrude(xb, y);
+}
+
+// A wavy line: every move turns by about 40 degrees, so no straight piece.
+void wavy_line(SynthGcode& g, double xa, double xb, double y) {
+    g.travel(xa, y);
+    int k = 0;
+    for (double x = xa + 0.7; x < xb; x += 0.7) g.extrude(x, y + (++k % 2 ? 0.125 : -0.125));
+    g.extrude(xb, y);
 }
 
 SynthGcode deck(const char* role) {
@@ -147,5 +190,76 @@ TEST(OverhangDetect, SmallRegionsAreDroppedAndOutputIsDeterministic) {
         EXPECT_EQ(a.points.points[i].x, b.points.points[i].x);
         EXPECT_EQ(a.points.points[i].y, b.points.points[i].y);
         EXPECT_EQ(a.points.points[i].layer, b.points.points[i].layer);
+    }
+}
+
+// The brief's 65 deg case, at a layer height where METHOD.md's bead rule
+// says the wall does not print (scaffold-check fails it unsupported): at
+// 0.3 mm layers a 0.45 mm bead reaches 0.3*tan(55) + 0.225 = 0.65 mm past the
+// layer below's centre line, the wall steps 0.3*tan(65) = 0.64 mm.
+TEST(OverhangDetect, ChamferAt65DegreesOnThickLayersGetsPoints) {
+    SynthGcode g = chamfer(offset_for(65, 0.3), 0.3);
+    Found f = detect(g);
+    EXPECT_GE(f.points.points.size(), 10u);
+    expect_covered(f, 3.5);
+    for (const auto& p : f.points.points) EXPECT_GT(p.x, 110);  // on the sloping side
+    auto program = gcode::parse(g.str(), "synth");
+    EXPECT_GT(check::check(program, nullptr, check::CheckOptions{}).unheld_regions_mm2, 10);
+}
+
+// Detection against the validator over a sweep of wall angles at 0.2 mm
+// layers: whatever scaffold-check finds unheld, detection has points for
+// (never less support than needed); walls at or under the overhang angle get
+// none; and once an angle needs points every steeper one does.
+TEST(OverhangDetect, ChamferSweepAgreesWithTheValidator) {
+    bool needed_before = false;
+    for (double deg = 40; deg <= 76; deg += 3) {
+        SynthGcode g = chamfer(offset_for(deg, 0.2));
+        Found f = detect(g);
+        auto program = gcode::parse(g.str(), "synth");
+        double unheld = check::check(program, nullptr, check::CheckOptions{}).unheld_regions_mm2;
+        bool needs = !f.points.points.empty();
+        if (unheld > 0) {
+            EXPECT_TRUE(needs) << deg << " deg: validator finds " << unheld << " mm^2 unheld, no points";
+        }
+        if (deg <= 55) {
+            EXPECT_FALSE(needs) << deg << " deg";
+        }
+        if (deg >= 70) {
+            EXPECT_GT(unheld, 0) << deg << " deg";
+        }
+        if (needed_before) {
+            EXPECT_TRUE(needs) << deg << " deg";
+        }
+        needed_before = needed_before || needs;
+        if (needs) expect_covered(f, 3.5);
+    }
+}
+
+TEST(OverhangDetect, MarkedBridgeSplitIntoShortMovesIsHeld) {
+    Found split = detect(towers_and_deck(8, "Bridge infill", line_in_moves));
+    EXPECT_TRUE(split.points.points.empty()) << split.points.points.size() << " points";
+    // The same lines unmarked are an overhang over the gap.
+    Found plain = detect(towers_and_deck(8, "Solid infill", line_in_moves));
+    EXPECT_GE(plain.points.points.size(), 2u);
+    for (const auto& p : plain.points.points) {
+        EXPECT_GT(p.x, 105);
+        EXPECT_LT(p.x, 113);
+    }
+    expect_covered(plain, 3.5);
+}
+
+TEST(OverhangDetect, MarkedBridgeTooLongOrNotStraightGetsPoints) {
+    // 15 mm between the towers: over the 10 mm bridge limit.
+    Found longer = detect(towers_and_deck(15, "Bridge infill", line_in_moves));
+    EXPECT_GE(longer.points.points.size(), 2u);
+    expect_covered(longer, 3.5);
+    // Within the limit but turning at every move: no straight span to hold it.
+    Found wavy = detect(towers_and_deck(8, "Bridge infill", wavy_line));
+    EXPECT_GE(wavy.points.points.size(), 2u);
+    expect_covered(wavy, 3.5);
+    for (const auto& p : wavy.points.points) {
+        EXPECT_GT(p.x, 105);
+        EXPECT_LT(p.x, 113);
     }
 }
