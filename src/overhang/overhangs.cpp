@@ -255,38 +255,39 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
 SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack& stack, const Settings& s) {
     SupportPoints out;
     out.overhang_area_mm2 = overhangs.area_mm2;
+    // Cells within the point radius of a point so far; a hair inside the
+    // radius so the raster never claims a cell the exact distance would not.
+    const double reach = s.point_radius - 1e-6;
+    layers::BitGrid covered;
     for (const OverhangLayer& ol : overhangs.layers) {
         const layers::BitGrid& g = ol.cells;
         const layers::Layer& layer = stack.layers[ol.layer];
         double z = layer.z - layer.height;
+        if (!covered.same_shape(g)) covered = g;
+        covered.clear();
         std::vector<SupportPoint> pts;
         for (const auto& comp : regions(g, kJoin)) {
-            std::vector<SupportPoint> comp_pts;
-            std::vector<Cell> todo = comp;
-            const double r2 = s.point_radius * s.point_radius;
+            std::size_t first = pts.size();
             auto uncovered = [&](const std::vector<Cell>& cells) {
+                for (std::size_t k = first; k < pts.size(); ++k) covered.draw_disc(pts[k].x, pts[k].y, reach);
+                first = pts.size();
                 std::vector<Cell> left;
-                for (const Cell& c : cells) {
-                    double x = g.cx(c.i), y = g.cy(c.j);
-                    bool covered = std::any_of(comp_pts.begin(), comp_pts.end(), [&](const SupportPoint& p) {
-                        return (p.x - x) * (p.x - x) + (p.y - y) * (p.y - y) <= r2;
-                    });
-                    if (!covered) left.push_back(c);
-                }
+                for (const Cell& c : cells)
+                    if (!covered.get(c.i, c.j)) left.push_back(c);
                 return left;
             };
             // Rounds of grid binning (bins shifted by half a spacing each round)
             // over what is still uncovered; the last resort is a point on the cell.
+            std::vector<Cell> todo = comp;
             for (int round = 0; round < 4 && !todo.empty(); ++round) {
                 double shift = round * s.point_spacing / 2;
-                bin_points(g, todo, s.point_spacing, shift, z, ol.layer, comp_pts);
+                bin_points(g, todo, s.point_spacing, shift, z, ol.layer, pts);
                 todo = uncovered(todo);
             }
             while (!todo.empty()) {
-                comp_pts.push_back({g.cx(todo.front().i), g.cy(todo.front().j), z, ol.layer});
+                pts.push_back({g.cx(todo.front().i), g.cy(todo.front().j), z, ol.layer});
                 todo = uncovered(todo);
             }
-            pts.insert(pts.end(), comp_pts.begin(), comp_pts.end());
         }
         std::stable_sort(pts.begin(), pts.end(), [](const SupportPoint& a, const SupportPoint& b) {
             return a.y != b.y ? a.y < b.y : a.x < b.x;
