@@ -31,38 +31,87 @@ bool comment_only(std::string_view t) {
     return i == std::string_view::npos || t[i] == ';';
 }
 
-// Lines of `out` that are not in `original`, by an in-order greedy match:
-// every command line of the original must appear, unchanged and in order
-// (comment-only lines may change: slicers' filament totals are updated).
-// Sets `changed` with the first original line that could not be found.
-std::vector<bool> inserted_lines(const gcode::Program& out, const gcode::Program& original, std::string& changed) {
-    std::vector<bool> inserted(out.lines.size(), true);
-    std::size_t k = 0;
-    auto next_code = [&](std::size_t from) {
-        while (from < original.lines.size() && comment_only(original.line_text(from))) ++from;
-        return from;
-    };
-    k = next_code(0);
-    for (std::size_t i = 0; i < out.lines.size() && k < original.lines.size(); ++i) {
-        std::string_view t = out.line_text(i);
-        if (comment_only(t)) {
-            inserted[i] = false;  // comments carry no material either way
-            continue;
-        }
-        if (t == original.line_text(k)) {
-            inserted[i] = false;
-            k = next_code(k + 1);
+// The in-order match of `original` in `out`: every command line of the
+// original must appear, unchanged and in order (comment-only lines may
+// change: slicers' filament totals are updated). Lines of `out` left over
+// were inserted (the support). A greedy scan finds a subsequence whenever
+// one exists; a missing line is skipped and the scan goes on from the last
+// match, up to kMaxMissing misses.
+struct LineMatch {
+    std::vector<bool> inserted;             // per line of out
+    std::vector<std::uint32_t> out_line;    // per line of original; kNone if missing/comment
+    int missing = 0;
+    std::string first_missing;
+};
+constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr int kMaxMissing = 20;
+
+LineMatch match_lines(const gcode::Program& out, const gcode::Program& original) {
+    LineMatch m;
+    m.inserted.assign(out.lines.size(), true);
+    m.out_line.assign(original.lines.size(), kNone);
+    for (std::size_t i = 0; i < out.lines.size(); ++i)
+        if (comment_only(out.line_text(i))) m.inserted[i] = false;  // comments carry no material
+    std::size_t from = 0;
+    for (std::size_t k = 0; k < original.lines.size(); ++k) {
+        std::string_view want = original.line_text(k);
+        if (comment_only(want)) continue;
+        if (m.missing > kMaxMissing) { ++m.missing; continue; }
+        std::size_t i = from;
+        while (i < out.lines.size() && (!m.inserted[i] || out.line_text(i) != want)) ++i;
+        if (i < out.lines.size()) {
+            m.inserted[i] = false;
+            m.out_line[k] = static_cast<std::uint32_t>(i);
+            from = i + 1;
+        } else {
+            if (m.missing++ == 0)
+                m.first_missing = "original line " + std::to_string(k + 1) + " ('" + std::string(want.substr(0, 60)) +
+                                  "') is missing or changed in the output";
         }
     }
-    if (k < original.lines.size())
-        changed = "original line " + std::to_string(k + 1) + " ('" + std::string(original.line_text(k).substr(0, 60)) +
-                  "') is missing or changed in the output";
-    return inserted;
+    return m;
+}
+
+// first[l]..first[l+1]: the moves made by line l.
+std::vector<std::uint32_t> moves_by_line(const gcode::Program& p) {
+    std::vector<std::uint32_t> first(p.lines.size() + 1, 0);
+    for (const auto& m : p.moves) ++first[m.line + 1];
+    for (std::size_t l = 1; l < first.size(); ++l) first[l] += first[l - 1];
+    return first;
+}
+
+bool near(double a, double b, double eps) { return std::abs(a - b) <= eps; }
+
+// Does the model line print the same in the output as in the original? The
+// same text can move differently when an inserted block leaves state behind
+// (position, E register, relative mode, feed, tool): then its bead starts
+// elsewhere, gets more or less filament, or prints at another speed.
+std::string move_difference(const gcode::Move& a, const gcode::Move& b) {
+    constexpr double kPos = 1e-3, kE = 1e-4;
+    auto pt = [](double x, double y, double z) {
+        return "(" + fixed(x, 3) + ", " + fixed(y, 3) + ", " + fixed(z, 3) + ")";
+    };
+    if (a.kind != b.kind) return "a different kind of move (travel/extrusion/retraction)";
+    if (a.tool != b.tool) return "tool T" + std::to_string(b.tool) + " instead of T" + std::to_string(a.tool);
+    // Travels only matter through where the next bead starts (checked there).
+    if (a.kind == gcode::MoveKind::Travel) return {};
+    if (a.kind == gcode::MoveKind::Extrude || a.kind == gcode::MoveKind::Wipe) {
+        if (!near(a.x0, b.x0, kPos) || !near(a.y0, b.y0, kPos) || !near(a.z0, b.z0, kPos))
+            return "starts at " + pt(b.x0, b.y0, b.z0) + " instead of " + pt(a.x0, a.y0, a.z0);
+        if (!near(a.x1, b.x1, kPos) || !near(a.y1, b.y1, kPos) || !near(a.z1, b.z1, kPos))
+            return "ends at " + pt(b.x1, b.y1, b.z1) + " instead of " + pt(a.x1, a.y1, a.z1);
+        if (!near(a.feed_mm_per_min, b.feed_mm_per_min, 0.01))
+            return "prints at F" + fixed(b.feed_mm_per_min, 0) + " instead of F" + fixed(a.feed_mm_per_min, 0);
+    }
+    if (!near(a.e, b.e, kE + 1e-6 * std::abs(a.e)))
+        return "moves E by " + fixed(b.e, 5) + " instead of " + fixed(a.e, 5);
+    return {};
 }
 
 struct LayerGrids {
     int index = -1;
     layers::BitGrid model, support;
+    layers::BitGrid skirt;  // skirt and brim: material, but it encloses nothing
 };
 
 // A straight run of consecutive segments of one extrusion path, as samples
@@ -189,17 +238,40 @@ double estimate_print_time(const gcode::Program& p) {
 
 CheckReport check(const gcode::Program& out, const gcode::Program* original, const CheckOptions& o,
                   const std::string& svg_dir) {
+    return check(out, original, build_settings(out, {}, {}), o, svg_dir);
+}
+
+CheckReport check(const gcode::Program& out, const gcode::Program* original, const Settings& settings,
+                  const CheckOptions& o, const std::string& svg_dir) {
     CheckReport r;
     r.file = out.path;
-    const Settings settings = build_settings(out, {}, {});
     const layers::LayerStack stack = layers::build_layers(out, settings);
     r.layers = static_cast<int>(stack.layers.size());
 
     std::vector<bool> inserted;
     if (original) {
         r.compared = true;
-        inserted = inserted_lines(out, *original, r.model_change);
-        r.model_unchanged = r.model_change.empty();
+        LineMatch match = match_lines(out, *original);
+        inserted = std::move(match.inserted);
+        r.model_lines_missing = match.missing;
+        r.model_change = match.first_missing;
+        // The lines found must also move the same: same start, end, E, feed.
+        const auto mo = moves_by_line(*original), mn = moves_by_line(out);
+        for (std::size_t k = 0; k < original->lines.size(); ++k) {
+            const std::uint32_t i = match.out_line[k];
+            if (i == kNone) continue;
+            std::string diff;
+            if (mo[k + 1] - mo[k] != mn[i + 1] - mn[i]) diff = "makes " + std::to_string(mn[i + 1] - mn[i]) +
+                                                                " moves instead of " + std::to_string(mo[k + 1] - mo[k]);
+            for (std::uint32_t a = mo[k], b = mn[i]; diff.empty() && a < mo[k + 1]; ++a, ++b)
+                diff = move_difference(original->moves[a], out.moves[b]);
+            if (diff.empty()) continue;
+            if (r.model_moves_changed++ == 0 && r.model_change.empty())
+                r.model_change = "original line " + std::to_string(k + 1) + " ('" +
+                                 std::string(original->line_text(k).substr(0, 60)) + "'), output line " +
+                                 std::to_string(i + 1) + ", " + diff;
+        }
+        r.model_unchanged = r.model_lines_missing == 0 && r.model_moves_changed == 0;
         r.original_print_time_s = estimate_print_time(*original);
     }
     auto is_support_move = [&](const gcode::Move& m) {
@@ -211,28 +283,54 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     auto note = [&](std::size_t line, const std::string& what) {
         if (r.extrusion_notes.size() < 10) r.extrusion_notes.push_back("line " + std::to_string(line + 1) + ": " + what);
     };
+    // E jumps: filament pushed without (enough) XY motion to lay it down.
+    // A prime may give back what was retracted plus retract_length + 0.5 mm
+    // (slicers' extra restart length); anything beyond is a jump.
+    const double prime_allowance = settings.retract_length + 0.5;
+    // Sane widths: 0.2x..3x the nozzle. The slicers' own model lines may go
+    // thinner (Slic3r ends infill with 0.6 mm pieces 0.07 mm wide): too little
+    // plastic is no printability hazard there, so the model's floor is 0.05x.
+    const double max_width = 3.0 * nozzle, min_support_width = 0.2 * nozzle, min_model_width = 0.05 * nozzle;
+    double retracted = 0;  // filament pulled back and not yet primed
     for (const auto& m : out.moves) {
         bool sup = is_support_move(m);
+        if (m.kind == gcode::MoveKind::Retract || m.kind == gcode::MoveKind::Wipe) retracted -= m.e;
         if (m.kind == gcode::MoveKind::Extrude) (sup ? r.support_filament_mm : r.model_filament_mm) += m.e;
-        if (m.kind == gcode::MoveKind::Unretract && m.e > std::max(2 * settings.retract_length, settings.retract_length + 2.0)) {
-            ++r.e_jumps;
-            note(m.line, "E jump of " + fixed(m.e, 3) + " mm without motion");
+        if (m.kind == gcode::MoveKind::Unretract) {
+            if (m.e - retracted > prime_allowance) {
+                ++r.e_jumps;
+                note(m.line, "E jump: " + fixed(m.e, 3) + " mm of filament without XY motion (" + fixed(retracted, 3) +
+                                 " mm were retracted)");
+            }
+            retracted = std::max(0.0, retracted - m.e);
         }
         if (m.kind != gcode::MoveKind::Extrude) continue;
-        if (m.x1 < settings.bed_min_x - 0.5 || m.x1 > settings.bed_max_x + 0.5 || m.y1 < settings.bed_min_y - 0.5 ||
-            m.y1 > settings.bed_max_y + 0.5) {
-            ++r.outside_bed;
-            note(m.line, "extrusion outside the bed at (" + fixed(m.x1, 2) + ", " + fixed(m.y1, 2) + ")");
-        }
         double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
-        if (len < 0.5) continue;  // short pieces carry rounding noise
         double h = m.z1 <= settings.first_layer_height + kZEps ? settings.first_layer_height : settings.layer_height;
-        double w = layers::width_from_e(m.e, len, h, fd);
-        double lo = sup ? 0.5 * nozzle : 0.05 * nozzle, hi = sup ? 2.0 * nozzle : 4.0 * nozzle;
-        if (w < lo || w > hi) {
+        // What a bead of the widest sane width would take over this length;
+        // the first extrusion after a retraction also primes.
+        double e_max = len * ((max_width - h) * h + std::numbers::pi * h * h / 4) / (std::numbers::pi * fd * fd / 4);
+        double primed = std::min(retracted, static_cast<double>(m.e));
+        retracted -= primed;
+        if (m.e - primed > e_max + prime_allowance) {
+            ++r.e_jumps;
+            note(m.line, "E jump: " + fixed(m.e, 3) + " mm of filament over " + fixed(len, 3) + " mm of motion");
+            continue;
+        }
+        if (m.x0 < settings.bed_min_x - 0.5 || m.x0 > settings.bed_max_x + 0.5 || m.y0 < settings.bed_min_y - 0.5 ||
+            m.y0 > settings.bed_max_y + 0.5 || m.x1 < settings.bed_min_x - 0.5 || m.x1 > settings.bed_max_x + 0.5 ||
+            m.y1 < settings.bed_min_y - 0.5 || m.y1 > settings.bed_max_y + 0.5) {
+            ++r.outside_bed;
+            note(m.line, "extrusion outside the bed from (" + fixed(m.x0, 2) + ", " + fixed(m.y0, 2) + ") to (" +
+                             fixed(m.x1, 2) + ", " + fixed(m.y1, 2) + ")");
+        }
+        if (len < 0.5) continue;  // short pieces carry the rounding of E and XY
+        double w = layers::width_from_e(m.e - primed, len, h, fd);
+        const double min_width = sup ? min_support_width : min_model_width;
+        if (w < min_width || w > max_width) {
             ++r.bad_extrusions;
             note(m.line, std::string(sup ? "support" : "model") + " extrusion " + fixed(w, 3) +
-                             " mm wide from its E (allowed " + fixed(lo, 2) + ".." + fixed(hi, 2) + ")");
+                             " mm wide from its E (allowed " + fixed(min_width, 2) + ".." + fixed(max_width, 2) + ")");
         }
     }
     r.print_time_s = estimate_print_time(out);
@@ -249,8 +347,13 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         g.index = index;
         g.model = proto;
         g.support = proto;
-        for (const auto& sg : stack.layers[index].segments)
-            (is_support_move(out.moves[sg.move]) ? g.support : g.model).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        g.skirt = proto;
+        for (const auto& sg : stack.layers[index].segments) {
+            layers::BitGrid& into = is_support_move(out.moves[sg.move]) ? g.support
+                                    : sg.role == gcode::Role::Skirt  ? g.skirt
+                                                                     : g.model;
+            into.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        }
         return cache.emplace(index, std::move(g)).first->second;
     };
     std::vector<std::pair<int, layers::BitGrid>> worst_grids;  // for the SVGs
@@ -283,7 +386,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         if (layer.on_bed) continue;
 
         // "Below": all material within one nominal layer, support within three.
-        layers::BitGrid below = proto, tips = proto;
+        // A skirt loop holds what lies on it but must not count as the rim
+        // of a hole: filled, it would "hold" everything inside it.
+        layers::BitGrid below = proto, skirt_below = proto, tips = proto;
         bool have_below = false;
         for (int k = L - 1; k >= 0; --k) {
             double dz = layer.z - stack.layers[k].z;
@@ -296,6 +401,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             below |= g.support;
             if (dz <= h_nom + kZEps || k == layer.below) {
                 below |= g.model;
+                skirt_below |= g.skirt;
                 tips |= g.support;
             }
             have_below = true;
@@ -304,27 +410,37 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             const LayerGrids& g = grids(layer.below);
             below |= g.model;
             below |= g.support;
+            skirt_below |= g.skirt;
             tips |= g.support;
         }
         tips.subtract(here.support);  // support that ends here is a contact tip
         const double reach = layer.height * slope + o.resolution / 2;
-        const layers::BitGrid held_grid = below.dilated(reach);
+        skirt_below |= below;
+        const layers::BitGrid held_grid = skirt_below.dilated(reach);
 
         // (a) per centre-line sample, then holes enclosed by the layer beneath.
         const auto& segs = layer.segments;
+        // A piece is straight while every segment stays within 10 deg of the
+        // piece's first direction: comparing each segment only with the one
+        // before would let a finely divided circle pass as one "straight"
+        // bridge (a 97-gon turns 3.7 deg per segment).
         std::vector<std::vector<Sample>> pieces;
+        double piece_ux = 0, piece_uy = 0;
+        const double cos_straight = std::cos(kStraightDeg * std::numbers::pi / 180);
         for (std::size_t k = 0; k < segs.size(); ++k) {
             const auto& sg = segs[k];
             double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
             bool joins = false;
-            if (k > 0 && !pieces.empty()) {
+            if (k > 0 && !pieces.empty() && len > 0) {
                 const auto& pv = segs[k - 1];
-                double pdx = pv.x1 - pv.x0, pdy = pv.y1 - pv.y0, plen = std::hypot(pdx, pdy);
                 bool same_path = sg.move == pv.move + 1 && is_support_move(out.moves[sg.move]) == is_support_move(out.moves[pv.move]);
-                double cosang = plen > 0 && len > 0 ? (dx * pdx + dy * pdy) / (len * plen) : -1;
-                joins = same_path && cosang >= std::cos(kStraightDeg * std::numbers::pi / 180);
+                joins = same_path && (dx * piece_ux + dy * piece_uy) / len >= cos_straight;
             }
-            if (!joins) pieces.emplace_back();
+            if (!joins) {
+                pieces.emplace_back();
+                piece_ux = len > 0 ? dx / len : 0;
+                piece_uy = len > 0 ? dy / len : 0;
+            }
             auto& piece = pieces.back();
             double s0 = piece.empty() ? 0 : piece.back().s;
             int n = std::max(1, static_cast<int>(std::ceil(len / o.resolution)));
@@ -394,7 +510,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         r.unheld_support_mm2 += as;
         layers::BitGrid both = unheld_model;
         both |= unheld_support;
-        r.unheld_regions_mm2 += significant_area(both, o.min_region_mm2);
+        r.unheld_regions_mm2 += o.min_region_mm2 > 0 ? significant_area(both, o.min_region_mm2) : am + as;
         LayerIssue is = issue_of(both, L, layer.z);
         add_issue(r.worst_unheld, is, o.worst);
         if (!svg_dir.empty()) {
@@ -411,6 +527,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         if (ec) throw Error(svg_dir, 0, "cannot create the directory: " + ec.message());
         for (const auto& [L, unheld] : worst_grids) {
             LayerGrids g = grids(L);
+            g.model |= g.skirt;
             std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + std::to_string(proto.width()) +
                             " " + std::to_string(proto.height()) + "\" width=\"" + std::to_string(proto.width() * 3) +
                             "\" height=\"" + std::to_string(proto.height() * 3) + "\">\n";
@@ -424,22 +541,27 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         }
     }
 
-    if (r.unheld_regions_mm2 > o.tolerance_mm2)
-        r.failures.push_back("unheld area " + fixed(r.unheld_regions_mm2, 2) + " mm^2 in regions of " +
-                             fixed(o.min_region_mm2, 2) + " mm^2 or more (all unheld: model " + fixed(r.unheld_model_mm2, 2) +
-                             ", support " + fixed(r.unheld_support_mm2, 2) + ")");
+    if (r.unheld_regions_mm2 > o.tolerance_mm2) {
+        std::string what = "unheld area " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
+                           fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + ")";
+        if (o.min_region_mm2 > 0)
+            what += ", " + fixed(r.unheld_regions_mm2, 2) + " mm^2 of it in regions of " + fixed(o.min_region_mm2, 2) + " mm^2 or more";
+        r.failures.push_back(what + ", more than the " + fixed(o.tolerance_mm2, 2) + " mm^2 tolerance");
+    }
     if (r.collision_mm2 > 0) r.failures.push_back("support within the XY gap of the model: " + fixed(r.collision_mm2, 2) + " mm^2");
     if (r.bad_extrusions) r.failures.push_back(std::to_string(r.bad_extrusions) + " extrusions with a width out of bounds");
     if (r.e_jumps) r.failures.push_back(std::to_string(r.e_jumps) + " E jumps");
     if (r.outside_bed) r.failures.push_back(std::to_string(r.outside_bed) + " extrusions outside the bed");
-    if (!r.model_unchanged) r.failures.push_back("model changed: " + r.model_change);
+    if (!r.model_unchanged)
+        r.failures.push_back("model changed (" + std::to_string(r.model_lines_missing) + " lines missing, " +
+                             std::to_string(r.model_moves_changed) + " lines moving differently): " + r.model_change);
     return r;
 }
 
 std::string report_text(const CheckReport& r) {
     std::string o = r.file + ": " + std::to_string(r.layers) + " layers\n";
     o += "  unheld area: " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
-         fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + "); in regions of 1 mm^2 or more: " +
+         fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + "); counted against the tolerance: " +
          fixed(r.unheld_regions_mm2, 2) + " mm^2\n";
     for (const auto& w : r.worst_unheld)
         o += "    layer " + std::to_string(w.layer) + " z " + fixed(w.z, 2) + ": " + fixed(w.area_mm2, 2) +
@@ -451,7 +573,12 @@ std::string report_text(const CheckReport& r) {
     o += "  extrusion: " + std::to_string(r.bad_extrusions) + " bad widths, " + std::to_string(r.e_jumps) + " E jumps, " +
          std::to_string(r.outside_bed) + " outside the bed\n";
     for (const auto& n : r.extrusion_notes) o += "    " + n + "\n";
-    if (r.compared) o += std::string("  model vs original: ") + (r.model_unchanged ? "unchanged" : r.model_change) + "\n";
+    if (r.compared)
+        o += std::string("  model vs original: ") +
+             (r.model_unchanged ? "unchanged"
+                                : std::to_string(r.model_lines_missing) + " lines missing, " +
+                                      std::to_string(r.model_moves_changed) + " lines moving differently; first: " + r.model_change) +
+             "\n";
     o += "  filament: model " + fixed(r.model_filament_mm, 1) + " mm, support " + fixed(r.support_filament_mm, 1) + " mm\n";
     o += "  print time estimate: " + fixed(r.print_time_s / 60, 1) + " min";
     if (r.original_print_time_s >= 0) o += " (original " + fixed(r.original_print_time_s / 60, 1) + " min)";
@@ -493,6 +620,8 @@ std::string report_json(const CheckReport& r) {
     o += "  \"e_jumps\": " + std::to_string(r.e_jumps) + ",\n";
     o += "  \"outside_bed\": " + std::to_string(r.outside_bed) + ",\n";
     o += std::string("  \"model_unchanged\": ") + (r.model_unchanged ? "true" : "false") + ",\n";
+    o += "  \"model_lines_missing\": " + std::to_string(r.model_lines_missing) + ",\n";
+    o += "  \"model_moves_changed\": " + std::to_string(r.model_moves_changed) + ",\n";
     o += "  \"support_filament_mm\": " + fixed(r.support_filament_mm, 2) + ",\n";
     o += "  \"model_filament_mm\": " + fixed(r.model_filament_mm, 2) + ",\n";
     o += "  \"print_time_s\": " + fixed(r.print_time_s, 1) + ",\n";

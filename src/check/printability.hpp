@@ -19,9 +19,16 @@ struct CheckOptions {
     double bridge_limit = 30;      // mm, for straight spans held at both ends
     double dangling_end = 1.0;     // mm, unheld ends this short are held
     double resolution = 0.1;
-    double tolerance_mm2 = 0.5;    // unheld area allowed (raster noise)
-    double min_region_mm2 = 1.0;   // unheld specks smaller than this do not fail
-                                   // (scaffold skips overhangs under 1 mm^2 too)
+    // Unheld area allowed per file, for raster noise: a centre-line sample
+    // that falls just outside the reach marks a bead stretch of one sample
+    // (0.1 mm x 0.45 mm = 0.045 mm^2); 0.5 mm^2 is about a 1 mm stretch of
+    // one bead, far below any real overhang (the corpus inputs have 36 to
+    // 1145 mm^2).
+    double tolerance_mm2 = 0.5;
+    // Unheld specks in regions smaller than this (per layer) do not count
+    // towards failure. 0 (default): every unheld cell counts; the planner's
+    // own thresholds are no reason for the validator to look away.
+    double min_region_mm2 = 0;
     int worst = 5;                 // worst layers listed
 };
 
@@ -48,6 +55,9 @@ struct CheckReport {
     bool compared = false;         // --original given
     bool model_unchanged = true;
     std::string model_change;      // first difference, when changed
+    int model_lines_missing = 0;   // original command lines not found in order
+    int model_moves_changed = 0;   // original lines found whose motion differs
+                                   // (start, end, E, feed, tool): state not restored
     double support_filament_mm = 0;
     double model_filament_mm = 0;
     double print_time_s = 0;
@@ -58,6 +68,10 @@ struct CheckReport {
 };
 
 // Validates `out`; `original` (may be null) is the input it was made from.
+// Settings (filament, layer height, nozzle, retraction, bed) come from
+// `settings`; the first form builds them from `out`'s own config block.
+CheckReport check(const gcode::Program& out, const gcode::Program* original, const Settings& settings,
+                  const CheckOptions& options, const std::string& svg_dir = "");
 CheckReport check(const gcode::Program& out, const gcode::Program* original, const CheckOptions& options,
                   const std::string& svg_dir = "");
 

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
         ("json", "print the report as JSON")
         ("svg", po::value<std::string>(), "draw the worst layers (model grey, support blue, unheld red) into DIR")
         ("tolerance-mm2", po::value<double>(&o.tolerance_mm2)->default_value(o.tolerance_mm2), "unheld area accepted as raster noise, mm^2")
-        ("min-region-mm2", po::value<double>(&o.min_region_mm2)->default_value(o.min_region_mm2), "unheld specks smaller than this (per layer) are reported but do not fail, mm^2; scaffold likewise skips overhangs under 1 mm^2")
+        ("min-region-mm2", po::value<double>(&o.min_region_mm2)->default_value(o.min_region_mm2), "unheld regions smaller than this (per layer) are reported but not counted against the tolerance, mm^2; 0 counts every unheld cell")
         ("overhang-angle", po::value<double>(&o.overhang_angle_deg)->default_value(o.overhang_angle_deg), "steepest self-supporting wall, degrees from vertical")
         ("xy-gap", po::value<double>(&o.xy_gap)->default_value(o.xy_gap), "least horizontal distance from support to model, mm")
         ("point-radius", po::value<double>(&o.point_radius)->default_value(o.point_radius), "radius a support contact tip holds, mm")

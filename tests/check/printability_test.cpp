@@ -121,28 +121,107 @@ TEST(Check, ChangedModelLineFails) {
     EXPECT_TRUE(same.ok()) << check::report_text(same);
 }
 
-TEST(Check, InsertedLinesCountAsSupport) {
-    SynthGcode a = cube(10);
-    std::string original = a.str();
-    // A pillar beside the cube, inserted without any role comment.
-    SynthGcode b = cube(10);
-    std::string text = b.str();
-    std::string out;
+namespace {
+
+// The cube with a short untyped bead beside it inserted before every layer
+// change but the first; `restore_e` puts the E register back afterwards.
+std::string cube_with_inserts(bool restore_e) {
+    std::string text = cube(10).str(), out, last_e = "0";
     std::size_t pos = 0;
     int layer = 0;
     while (pos < text.size()) {
         std::size_t nl = text.find('\n', pos);
         std::string line = text.substr(pos, nl - pos + 1);
-        if (line == ";LAYER_CHANGE\n" && layer++ > 0)
-            out += "G1 X120 Y105 F7800\nG1 X121 Y105 E0.05\nG1 X121 Y106 E0.1\n";
+        if (line == ";LAYER_CHANGE\n" && layer++ > 0) {
+            out += "G92 E0\nG1 X120 Y105 F7800\nG1 X121 Y105 E0.05\nG1 X121 Y106 E0.1\n";
+            if (restore_e) out += "G92 E" + last_e + "\n";
+        }
+        if (line.rfind("G1 ", 0) == 0 && line.find(" E") != std::string::npos)
+            last_e = line.substr(line.find(" E") + 2, line.find_first_of(" \n", line.find(" E") + 2) - line.find(" E") - 2);
         out += line;
         pos = nl + 1;
     }
-    auto o = gcode::parse(out, "out.gcode");
-    auto i = gcode::parse(original, "in.gcode");
+    return out;
+}
+
+}  // namespace
+
+TEST(Check, InsertedLinesCountAsSupport) {
+    auto i = gcode::parse(cube(10).str(), "in.gcode");
+    auto o = gcode::parse(cube_with_inserts(true), "out.gcode");
     auto r = check::check(o, &i, {});
-    EXPECT_TRUE(r.model_unchanged);
-    EXPECT_GT(r.support_filament_mm, 0.1);
+    EXPECT_TRUE(r.model_unchanged) << check::report_text(r);
+    EXPECT_EQ(r.model_moves_changed, 0);
+    // 9 inserts of 0.05 + 0.05 mm of filament, none of it the model's.
+    EXPECT_NEAR(r.support_filament_mm, 0.9, 1e-4);
+    EXPECT_NEAR(r.model_filament_mm, i.moves.empty() ? 0 : check::check(i, nullptr, {}).model_filament_mm, 1e-3);
+}
+
+TEST(Check, InsertWithoutRestoringStateChangesTheModel) {
+    // Same text for every model line, but the E register is left at 0.1: the
+    // next model bead would push (or pull) the whole difference.
+    auto i = gcode::parse(cube(10).str(), "in.gcode");
+    auto o = gcode::parse(cube_with_inserts(false), "out.gcode");
+    auto r = check::check(o, &i, {});
+    EXPECT_EQ(r.model_lines_missing, 0);
+    EXPECT_GE(r.model_moves_changed, 9);  // at least the first E move after each insert
+    EXPECT_FALSE(r.model_unchanged);
+    EXPECT_FALSE(r.ok());
+}
+
+TEST(Check, ShortMoveWithLargeEIsAJump) {
+    SynthGcode g = cube(5);
+    g.raw("G1 X100.1 Y100 E200 F1800");  // 0.1 mm of motion, ~150 mm of filament
+    auto r = run(g);
+    EXPECT_EQ(r.e_jumps, 1) << check::report_text(r);
+    EXPECT_FALSE(r.ok());
+    // A prime that gives back a retraction is no jump.
+    SynthGcode p = cube(5);
+    p.raw("G1 E-5 F2100");
+    p.raw("G1 X100 Y101 F7800");
+    p.raw("G1 E0 F2100");
+    EXPECT_EQ(run(p).e_jumps, 0);
+}
+
+TEST(Check, CircleOverhangIsNoStraightBridge) {
+    // A 10 x 30 tower, then a 96-gon loop of radius 12 around its centre: it
+    // rests on the tower over two 10 mm arcs and crosses air over two arcs
+    // of 27 mm. Each side turns 3.75 deg, but the arcs turn 131 deg: no
+    // straight span, so they are unheld (about 2 x 27 mm x 0.45 mm).
+    SynthGcode g;
+    for (int l = 1; l <= 20; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.filled_rect(120, 90, 130, 120);
+    }
+    g.layer(4.2);
+    g.type("Overhang perimeter");
+    g.circle(125, 105, 12);
+    auto r = run(g);
+    EXPECT_FALSE(r.ok());
+    EXPECT_GT(r.unheld_model_mm2, 18);
+    EXPECT_LT(r.unheld_model_mm2, 27);
+    ASSERT_FALSE(r.worst_unheld.empty());
+    EXPECT_NEAR(r.worst_unheld[0].z, 4.2, 1e-6);
+}
+
+TEST(Check, SkirtEnclosesNothing) {
+    // A 2 mm square with a skirt loop 10 mm around it, then a 10 mm square on
+    // top: the skirt must not fill the space inside it.
+    SynthGcode g;
+    g.layer(0.2);
+    g.type("Skirt/Brim");
+    g.rect_outline(105, 95, 125, 115);
+    g.type("External perimeter");
+    g.filled_rect(114, 104, 116, 106);
+    g.layer(0.4);
+    g.filled_rect(110, 100, 120, 110);
+    auto r = run(g);
+    EXPECT_FALSE(r.ok());
+    // 10.45 x 10.45 mm^2 of bead printed; what lies within reach of the
+    // 2 mm square (about 3 x 3 mm) is held.
+    EXPECT_GT(r.unheld_model_mm2, 95);
+    EXPECT_LT(r.unheld_model_mm2, 105);
 }
 
 TEST(Check, TrapezoidTimeOfOneMove) {

@@ -86,6 +86,14 @@ void SynthGcode::filled_disc(double cx, double cy, double r) {
     extrude(cx + 0.01, cy);
 }
 
+void SynthGcode::circle(double cx, double cy, double r, int sides) {
+    travel(cx + r, cy);
+    for (int k = 1; k <= sides; ++k) {
+        double a = 2 * std::numbers::pi * k / sides;
+        extrude(cx + r * std::cos(a), cy + r * std::sin(a));
+    }
+}
+
 void SynthGcode::raw(std::string_view line) {
     body_ += line;
     body_ += "\n";

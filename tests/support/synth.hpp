@@ -22,6 +22,9 @@ public:
     void filled_rect(double x0, double y0, double x1, double y1);
     // A filled disc of radius r (concentric loops).
     void filled_disc(double cx, double cy, double r);
+    // One closed loop: a regular polygon of `sides` around (cx, cy), as
+    // slicers write circles (one move per side).
+    void circle(double cx, double cy, double r, int sides = 96);
     void raw(std::string_view line);         // any extra line, verbatim
 
     // Layers of a filled box from z_from (exclusive) to z_to (inclusive) are
