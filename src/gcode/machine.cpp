@@ -83,6 +83,8 @@ const char* arc(MachineState& st, const Command& cmd, std::uint32_t line, std::v
     if (const char* err = target(st, cmd, scale, x, y, z)) return err;
     bool clockwise = cmd.code == 2;
     double cx, cy;
+    for (char l : {'I', 'J', 'R'})
+        if (std::abs(cmd.get(l, 0)) * scale > 2 * kMaxCoordinate) return "arc centre or radius out of range";
     if (cmd.has('I') || cmd.has('J')) {
         cx = st.x + cmd.get('I', 0) * scale;
         cy = st.y + cmd.get('J', 0) * scale;
@@ -110,7 +112,9 @@ const char* arc(MachineState& st, const Command& cmd, std::uint32_t line, std::v
     int n = 1;
     if (r > kArcTolerance) {
         double step = 2 * std::acos(1 - kArcTolerance / r);
-        n = std::clamp(static_cast<int>(std::ceil(std::abs(sweep) / step)), 1, 10000);
+        // Clamp before converting: a huge radius gives a count beyond int.
+        double pieces = std::ceil(std::abs(sweep) / step);
+        n = pieces >= 1 && pieces <= 10000 ? static_cast<int>(pieces) : (pieces > 10000 ? 10000 : 1);
     }
     double px = st.x, py = st.y, pz = st.z;
     for (int k = 1; k <= n; ++k) {
