@@ -31,7 +31,7 @@ void write_points_json(const std::string& path, const SupportPoints& points) {
         o += (i ? ",\n  " : "\n  ");
         o += "{\"x\":" + f(p.x) + ",\"y\":" + f(p.y) + ",\"z\":" + f(p.z) + ",\"layer\":" + std::to_string(p.layer) + "}";
     }
-    o += "],\n\"overhang_area_mm2\":" + f(points.overhang_area_mm2, 2) + "}\n";
+    o += "],\n\"overhang_area_mm2\":" + f(points.overhang_area_mm2) + "}\n";
     save(path, o);
 }
 

@@ -87,6 +87,58 @@ void bin_points(const layers::BitGrid& g, const std::vector<Cell>& cells, double
     }
 }
 
+// Support points covering one region: every cell within `radius` of a
+// point, every point on a cell. Rounds of grid binning (bins shifted by half
+// a spacing each round) over what is still uncovered, then a greedy cover.
+std::vector<SupportPoint> cover_region(const layers::BitGrid& g, const std::vector<Cell>& cells, double spacing,
+                                       double radius, double z, int layer) {
+    // Coverage on a grid over the region's bounds only; a hair inside the
+    // radius so the raster never claims a cell the exact distance would not.
+    const double reach = radius - 1e-6;
+    int i0 = cells.front().i, i1 = i0, j0 = cells.front().j, j1 = j0;
+    for (const Cell& c : cells) {
+        i0 = std::min(i0, c.i); i1 = std::max(i1, c.i);
+        j0 = std::min(j0, c.j); j1 = std::max(j1, c.j);
+    }
+    const double cell = g.cell();
+    layers::BitGrid covered(g.origin_x() + i0 * cell, g.origin_y() + j0 * cell, g.origin_x() + (i1 + 1) * cell,
+                            g.origin_y() + (j1 + 1) * cell, cell);
+    auto is_covered = [&](const Cell& c) { return covered.get(covered.col(g.cx(c.i)), covered.row(g.cy(c.j))); };
+    std::vector<SupportPoint> pts;
+    std::size_t drawn = 0;
+    auto uncovered = [&](const std::vector<Cell>& todo) {
+        for (; drawn < pts.size(); ++drawn) covered.draw_disc(pts[drawn].x, pts[drawn].y, reach);
+        std::vector<Cell> left;
+        for (const Cell& c : todo)
+            if (!is_covered(c)) left.push_back(c);
+        return left;
+    };
+    std::vector<Cell> todo = cells;
+    for (int round = 0; round < 4 && !todo.empty(); ++round) {
+        double shift = round * spacing / 2;
+        bin_points(g, todo, spacing, shift, z, layer, pts);
+        todo = uncovered(todo);
+    }
+    // Greedy: a point that surely covers the first uncovered cell, on the
+    // uncovered cell nearest the middle of the uncovered cells around it.
+    while (!todo.empty()) {
+        const double x0 = g.cx(todo.front().i), y0 = g.cy(todo.front().j);
+        auto near = [&](const Cell& c) { return std::hypot(g.cx(c.i) - x0, g.cy(c.j) - y0) <= reach; };
+        double sx = 0, sy = 0, n = 0;
+        for (const Cell& c : todo)
+            if (near(c)) { sx += g.cx(c.i); sy += g.cy(c.j); ++n; }
+        Cell best = todo.front();
+        double best_d = 1e300;
+        for (const Cell& c : todo) {
+            double d = std::hypot(g.cx(c.i) - sx / n, g.cy(c.j) - sy / n);
+            if (d < best_d && near(c)) { best_d = d; best = c; }
+        }
+        pts.push_back({g.cx(best.i), g.cy(best.j), z, layer});
+        todo = uncovered(todo);
+    }
+    return pts;
+}
+
 // Overhang regions: cells of `g` grouped by the components of `g` grown by
 // `join` mm, so the parallel lines of one bridge or skin make one region.
 std::vector<std::vector<Cell>> regions(const layers::BitGrid& g, double join) {
@@ -255,39 +307,14 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
 SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack& stack, const Settings& s) {
     SupportPoints out;
     out.overhang_area_mm2 = overhangs.area_mm2;
-    // Cells within the point radius of a point so far; a hair inside the
-    // radius so the raster never claims a cell the exact distance would not.
-    const double reach = s.point_radius - 1e-6;
-    layers::BitGrid covered;
     for (const OverhangLayer& ol : overhangs.layers) {
         const layers::BitGrid& g = ol.cells;
         const layers::Layer& layer = stack.layers[ol.layer];
         double z = layer.z - layer.height;
-        if (!covered.same_shape(g)) covered = g;
-        covered.clear();
         std::vector<SupportPoint> pts;
         for (const auto& comp : regions(g, kJoin)) {
-            std::size_t first = pts.size();
-            auto uncovered = [&](const std::vector<Cell>& cells) {
-                for (std::size_t k = first; k < pts.size(); ++k) covered.draw_disc(pts[k].x, pts[k].y, reach);
-                first = pts.size();
-                std::vector<Cell> left;
-                for (const Cell& c : cells)
-                    if (!covered.get(c.i, c.j)) left.push_back(c);
-                return left;
-            };
-            // Rounds of grid binning (bins shifted by half a spacing each round)
-            // over what is still uncovered; the last resort is a point on the cell.
-            std::vector<Cell> todo = comp;
-            for (int round = 0; round < 4 && !todo.empty(); ++round) {
-                double shift = round * s.point_spacing / 2;
-                bin_points(g, todo, s.point_spacing, shift, z, ol.layer, pts);
-                todo = uncovered(todo);
-            }
-            while (!todo.empty()) {
-                pts.push_back({g.cx(todo.front().i), g.cy(todo.front().j), z, ol.layer});
-                todo = uncovered(todo);
-            }
+            std::vector<SupportPoint> some = cover_region(g, comp, s.point_spacing, s.point_radius, z, ol.layer);
+            pts.insert(pts.end(), some.begin(), some.end());
         }
         std::stable_sort(pts.begin(), pts.end(), [](const SupportPoint& a, const SupportPoint& b) {
             return a.y != b.y ? a.y < b.y : a.x < b.x;
