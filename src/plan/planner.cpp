@@ -2,320 +2,276 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <limits>
 #include <numbers>
-#include <set>
-#include <tuple>
+#include <utility>
 
 #include "plan/pillars.hpp"
-#include "toolpath/support_paths.hpp"
 
 namespace scaffold::plan {
 
-double bridge_gain(int supported, double z, double length) { return (supported - 2) * z - length; }
-
-double bridge_score(double gain, int supported, double l_max) { return gain - supported * l_max; }
-
 namespace {
 
-constexpr double kThickness = toolpath::kBridgeThickness;
-constexpr double kConnectorRadius = 0.75;  // stays on the 0.9 mm wide bridge bar
-constexpr int kMaxRejects = 40;            // candidates tried per greedy step
-constexpr int kHeightSteps = 3;            // candidate heights: the highest and 2 steps below
+constexpr double kTipClearance = 0.2;  // the contact (top two layers) may come this close to the model
+constexpr double kFootMinHeight = 3.0; // report: feet only under pillars taller than 3 mm
 
-// Largest layer top at or below z (layer_tops ascending), or -1.
-double snap_down(const std::vector<double>& tops, double z) {
-    auto it = std::upper_bound(tops.begin(), tops.end(), z + 1e-6);
-    return it == tops.begin() ? -1 : *(it - 1);
-}
-
-// How far a connector may lean per mm of height and still print: a loop may
-// shift by the self-supporting reach plus half its bead per layer.
-double lean_per_mm(const Settings& s) {
-    double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-    return 0.8 * (s.layer_height * slope + s.support_width / 2) / s.layer_height;
-}
-
-using Key = std::tuple<long, long, long, long, long>;
-Key key_of(const Candidate& c) {
-    auto r = [](double v) { return std::lround(v * 100); };
-    return {r(c.x0), r(c.y0), r(c.x1), r(c.y1), r(c.z)};
-}
-
-// The `keep` best candidates over all sweep directions, best first.
-//
-// Cost: for each of D directions, each of the N sweep lines (one through each
-// active point) looks at the K points in its 10 mm band: K^2 endpoint pairs
-// (those 5..30 mm apart), each with up to K bridge heights, so O(D N K^3)
-// per greedy step, with K bounded by the point density (5 mm grid), not N.
-// Whether a bridge bar at zb between the two points keeps the gap from the
-// model on both of its layers (true without a model).
-using BarClear = std::function<bool(double x0, double y0, double x1, double y1, double zb)>;
-
-std::vector<Candidate> top_bridges(const std::vector<Active>& active, const std::vector<double>& tops, const Settings& s,
-                                   const std::set<Key>& rejected, std::size_t keep, const BarClear& clear) {
-    std::vector<Candidate> best;  // sorted by score, descending
-    const std::size_t n = active.size();
-    if (n < 3) return best;
-    auto worst = [&] { return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score; };
-    const double lean = lean_per_mm(s);
-    std::vector<double> pu(n), pv(n);
-    std::vector<int> by_v(n), band;
-    std::vector<std::pair<double, int>> zs;  // carried candidates by z, descending
-    for (int k = 0; k < s.sweep_directions; ++k) {
-        double th = k * std::numbers::pi / s.sweep_directions;
-        double ux = std::cos(th), uy = std::sin(th);
-        for (std::size_t i = 0; i < n; ++i) {
-            pu[i] = active[i].x * ux + active[i].y * uy;
-            pv[i] = -active[i].x * uy + active[i].y * ux;
-            by_v[i] = static_cast<int>(i);
-        }
-        std::stable_sort(by_v.begin(), by_v.end(), [&](int a, int b) { return pv[a] < pv[b]; });
-        std::size_t lo = 0, hi = 0;
-        for (std::size_t qi = 0; qi < n; ++qi) {
-            // The sweep line through point q; its band holds the points whose
-            // anchoring segments (5 mm either side) it crosses.
-            double v0 = pv[by_v[qi]];
-            while (pv[by_v[lo]] < v0 - s.bridge_max_offset) ++lo;
-            while (hi < n && pv[by_v[hi]] <= v0 + s.bridge_max_offset) ++hi;
-            band.assign(by_v.begin() + static_cast<long>(lo), by_v.begin() + static_cast<long>(hi));
-            std::stable_sort(band.begin(), band.end(), [&](int a, int b) { return pu[a] < pu[b]; });
-            for (std::size_t m = 0; m < band.size(); ++m) {
-                zs.clear();
-                for (std::size_t e = m; e < band.size(); ++e) {
-                    int pe = band[e];
-                    double len = pu[pe] - pu[band[m]];
-                    if (len > s.bridge_max_length) break;
-                    zs.emplace_back(active[pe].z, pe);
-                    std::inplace_merge(zs.begin(), zs.end() - 1, zs.end(),
-                                       [](const auto& a, const auto& b) { return a.first > b.first; });
-                    if (len < s.bridge_min_length || zs.size() < 3) continue;
-                    // For each count c, the highest bridge that has c points at
-                    // least the drop above its top.
-                    // No height can beat the kept candidates: skip the pair.
-                    double bound = static_cast<double>(zs.size() - 2) * (zs.front().first - s.bridge_min_drop) - len;
-                    if (bound <= worst()) continue;
-                    for (std::size_t c = 3; c <= zs.size(); ++c) {
-                      // Equal heights give the same bridges: take the last of a run.
-                      if (c < zs.size() && zs[c].first == zs[c - 1].first) continue;
-                      // The highest height first, then every step below it.
-                      double z_hi = zs[c - 1].first - s.bridge_min_drop - kThickness;
-                      for (int drop = 0; drop < kHeightSteps; ++drop) {
-                        double zb = snap_down(tops, z_hi - drop * s.bridge_height_step);
-                        if (zb <= 0) break;
-                        int carried = 0;
-                        double l_max = 0;
-                        for (const auto& [pz, pi] : zs) {
-                            double rise = pz - zb - kThickness;
-                            double side = std::abs(pv[pi] - v0);
-                            if (rise < s.bridge_min_drop - 1e-9 || side > lean * rise) continue;
-                            ++carried;
-                            l_max = std::max(l_max, side + (pz - zb));
-                        }
-                        double gain = bridge_gain(carried, zb, len);
-                        if (gain <= 0) continue;
-                        double score = bridge_score(gain, carried, l_max);
-                        if (score <= worst()) continue;
-                        Candidate cand;
-                        cand.x0 = pu[band[m]] * ux - v0 * uy;
-                        cand.y0 = pu[band[m]] * uy + v0 * ux;
-                        cand.x1 = pu[pe] * ux - v0 * uy;
-                        cand.y1 = pu[pe] * uy + v0 * ux;
-                        cand.z = zb;
-                        if (rejected.count(key_of(cand))) continue;
-                        if (clear && !clear(cand.x0, cand.y0, cand.x1, cand.y1, zb)) continue;
-                        cand.gain = gain;
-                        cand.score = score;
-                        cand.l_max = l_max;
-                        for (const auto& [pz, pi] : zs) {
-                            double rise = pz - zb - kThickness;
-                            double side = std::abs(pv[pi] - v0);
-                            if (rise >= s.bridge_min_drop - 1e-9 && side <= lean * rise) cand.carried.push_back(pi);
-                        }
-                        std::sort(cand.carried.begin(), cand.carried.end());
-                        // Insert after equal scores: earlier finds win ties.
-                        auto at = std::upper_bound(best.begin(), best.end(), score,
-                                                   [](double sc, const Candidate& b) { return sc > b.score; });
-                        best.insert(at, std::move(cand));
-                        if (best.size() > keep) best.pop_back();
-                      }
-                    }
-                }
-            }
-        }
-    }
-    return best;
-}
-
-// Layers by z (purge lines left out), to find the layer above a height.
-class LayersByZ {
-public:
-    explicit LayersByZ(const layers::LayerStack& stack) {
-        for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
-            if (!stack.layers[i].purge) by_z_.emplace_back(stack.layers[i].z, i);
-        std::stable_sort(by_z_.begin(), by_z_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    }
-    // The layer whose bottom is at z (the first layer above z), or -1.
-    int above(double z) const {
-        auto it = std::upper_bound(by_z_.begin(), by_z_.end(), z + 1e-6,
-                                   [](double v, const std::pair<double, int>& e) { return v < e.first; });
-        return it == by_z_.end() ? -1 : it->second;
-    }
-
-private:
-    std::vector<std::pair<double, int>> by_z_;
-};
-
-// The top layer of the support under an active point: beneath the
-// overhang (less the top gap) for a support point, the bridge's own layer
-// beneath for a bridge end.
-int top_layer_of(const Active& a, const overhang::SupportPoints& pts, const layers::LayerStack& stack,
-                 const LayersByZ& by_z, const Settings& s) {
-    if (a.point < 0) {
-        int above = by_z.above(a.z);
-        return above < 0 ? -1 : stack.layers[above].below;
-    }
-    int t = stack.layers[pts.points[a.point].layer].below;
-    for (int k = 0; k < s.top_gap_layers && t >= 0; ++k) t = stack.layers[t].below;
-    return t;
-}
-
-// A slanted column from the bridge top up to (tx, ty) under the active
-// point; nullopt if it would come within the gap of the model on some layer.
-std::optional<Column> connector_to(const Candidate& b, const Active& a, double tx, double ty, int top_layer,
-                                   const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
-    if (top_layer < 0) return std::nullopt;
+// A slanted column from the bar's top up to (tx, ty) under the active
+// point; nullopt when it leans more than printable on some layer or comes
+// within the gap of the model.
+std::optional<Column> connector_to(const Candidate& b, const Active& a, double tx, double ty, const ModelView& m,
+                                   const Settings& s) {
     double dx = b.x1 - b.x0, dy = b.y1 - b.y0, len2 = dx * dx + dy * dy;
     double t = len2 > 0 ? std::clamp(((tx - b.x0) * dx + (ty - b.y0) * dy) / len2, 0.0, 1.0) : 0;
     Column c;
     c.x0 = b.x0 + dx * t;
     c.y0 = b.y0 + dy * t;
-    c.z0 = b.z + kThickness;
+    c.z0 = b.z + kBarThickness;
     c.x1 = tx;
     c.y1 = ty;
-    c.z1 = stack.layers[top_layer].z;
+    c.z1 = a.z;
     c.radius = kConnectorRadius;
     c.base = Base::Bridge;
     c.top = a.point >= 0 ? Top::Contact : Top::Bridge;
     c.contact_z = a.point >= 0 ? c.z1 : 0;
     c.point = a.point;
     if (c.z1 <= c.z0 + 1e-6) return std::nullopt;
-    if (std::hypot(c.x1 - c.x0, c.y1 - c.y0) > lean_per_mm(s) * (c.z1 - c.z0)) return std::nullopt;
-    for (int l = top_layer; l >= 0 && stack.layers[l].z > c.z0 + 1e-6; l = stack.layers[l].below) {
-        double z = stack.layers[l].z, x, y;
+    std::vector<double> layers = m.tops_between(c.z0, c.z1, s.layer_height);
+    if (layers.empty()) return std::nullopt;
+    const double dist = std::hypot(c.x1 - c.x0, c.y1 - c.y0);
+    double prev = c.z0;
+    for (double z : layers) {
+        double shift = dist * (z - prev) / (c.z1 - c.z0);
+        if (shift > max_lean_per_layer(z - prev, s) + 1e-9) return std::nullopt;
+        prev = z;
+        if (!m.disc_clear) continue;
+        double x, y;
         column_centre_at(c, z, x, y);
         bool tip = c.contact_z > 0 && z > c.contact_z - 2 * s.layer_height + 1e-6;
-        if (!obs.disc_clear(l, x, y, column_radius_at(c, z, s) + (tip ? 0.2 : s.xy_gap))) return std::nullopt;
+        if (!m.disc_clear(z, x, y, column_radius_at(c, z, s) + (tip ? kTipClearance : s.xy_gap))) return std::nullopt;
     }
     return c;
 }
 
-// The connector to the point itself, or, for a support point whose straight
-// connector meets the model, to a tip up to 1.5 mm away (it still holds the
-// point: the point radius is 3.5 mm). Bridge ends must be met exactly.
-std::optional<Column> connector(const Candidate& b, const Active& a, int top_layer, const layers::LayerStack& stack,
-                                const Obstacles& obs, const Settings& s) {
-    if (auto c = connector_to(b, a, a.x, a.y, top_layer, stack, obs, s)) return c;
-    if (a.point < 0) return std::nullopt;
+// The connector to the point itself or, for a support point whose straight
+// connector is blocked, to a tip up to 1.5 mm away (the tip still holds the
+// point: its radius is 3.5 mm). A bridge end must be met exactly.
+std::optional<Column> connector(const Candidate& b, const Active& a, const ModelView& m, const Settings& s) {
+    if (auto c = connector_to(b, a, a.x, a.y, m, s)) return c;
+    if (a.point < 0 || !m.disc_clear) return std::nullopt;
     for (double d : {0.5, 1.0, 1.5})
         for (int k = 0; k < 8; ++k) {
             double ang = k * std::numbers::pi / 4;
-            if (auto c = connector_to(b, a, a.x + d * std::cos(ang), a.y + d * std::sin(ang), top_layer, stack, obs, s))
-                return c;
+            if (auto c = connector_to(b, a, a.x + d * std::cos(ang), a.y + d * std::sin(ang), m, s)) return c;
         }
     return std::nullopt;
 }
 
+struct BridgePlan {
+    std::vector<Bridge> bridges;
+    std::vector<Column> connectors;
+    std::vector<Active> remaining;  // to stand on pillars, in a fixed order
+};
+
+// The greedy loop (METHOD.md step 4): take the best bridge that can really
+// be built, remove what it carries, add its two ends, repeat.
+BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s) {
+    BridgePlan out;
+    BridgeSearch search(m, s);
+    for (const Active& a : start) search.add(a);
+    // Bounded work where the model is in the way everywhere.
+    long rejects_left = 80 + 2 * static_cast<long>(start.size());
+    while (auto c = search.best()) {
+        std::vector<Column> connectors;
+        std::vector<int> carried;
+        double l_max = 0;
+        for (int id : c->carried) {
+            auto col = connector(*c, search.active(id), m, s);
+            if (!col) continue;
+            connectors.push_back(*col);
+            carried.push_back(id);
+            l_max = std::max(l_max, std::hypot(col->x1 - col->x0, col->y1 - col->y0) + col->z1 - c->z);
+        }
+        const int k = static_cast<int>(carried.size());
+        const double len = std::hypot(c->x1 - c->x0, c->y1 - c->y0);
+        bool ok = bridge_gain(k, c->z, len) > 0;
+        if (ok && m.end_stands) ok = m.end_stands(c->x0, c->y0, c->z) && m.end_stands(c->x1, c->y1, c->z);
+        if (!ok) {
+            search.reject(*c);
+            if (--rejects_left <= 0) break;
+            continue;
+        }
+        Bridge br{c->x0, c->y0, c->x1, c->y1, c->z, {}, bridge_gain(k, c->z, len), 0};
+        br.score = bridge_score(br.gain, k, l_max);
+        for (int id : carried)
+            if (search.active(id).point >= 0) br.points.push_back(search.active(id).point);
+        out.bridges.push_back(std::move(br));
+        out.connectors.insert(out.connectors.end(), connectors.begin(), connectors.end());
+        for (int id : carried) search.remove(id);
+        search.add({c->x0, c->y0, c->z, -1});
+        search.add({c->x1, c->y1, c->z, -1});
+    }
+    for (int id = 0; id < search.size(); ++id)
+        if (search.alive(id)) out.remaining.push_back(search.active(id));
+    return out;
+}
+
+// Support point indices in a canonical order (position, then index), so the
+// plan does not depend on the order of the input.
+std::vector<int> canonical_order(const overhang::SupportPoints& points) {
+    std::vector<int> order(points.points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        const auto &p = points.points[a], &q = points.points[b];
+        return std::tie(p.x, p.y, p.z, p.layer) < std::tie(q.x, q.y, q.z, q.layer);
+    });
+    return order;
+}
+
+// A vertical pillar from the bed or the model's top up to the active point.
+std::optional<Column> vertical_pillar(const Active& a, const ModelView& m, const Settings& s) {
+    Column c;
+    c.x0 = c.x1 = a.x;
+    c.y0 = c.y1 = a.y;
+    c.z1 = a.z;
+    c.z0 = m.model_top_below ? m.model_top_below(a.z, a.x, a.y, s.pillar_radius) : 0;
+    c.base = c.z0 > 0 ? Base::Model : Base::Bed;
+    c.top = a.point >= 0 ? Top::Contact : Top::Bridge;
+    c.point = a.point;
+    c.contact_z = c.z1;  // tapered top, under a bridge end too (as drop_pillar)
+    c.radius = std::max(s.pillar_radius, c.z1 / (2 * s.slenderness));
+    if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
+    if (c.base == Base::Bed) {
+        if (c.z1 - c.z0 > kFootMinHeight) c.foot_radius = s.foot_radius;
+        c.raft_size = s.raft_size;
+    }
+    return c;
+}
+
+// Layer tops and the layer indices at each, from the obstacle rasters.
+struct LayerIndex {
+    std::vector<std::pair<double, int>> by_z;  // (top z, layer), ascending
+    std::vector<int> at(double z) const {
+        std::vector<int> out;
+        auto it = std::lower_bound(by_z.begin(), by_z.end(), std::make_pair(z - 1e-6, -1));
+        for (; it != by_z.end() && it->first <= z + 1e-6; ++it) out.push_back(it->second);
+        return out;
+    }
+    int above(double z) const {  // a layer whose top is the first one above z, or -1
+        auto it = std::lower_bound(by_z.begin(), by_z.end(), std::make_pair(z + 1e-6, -1));
+        return it == by_z.end() ? -1 : it->second;
+    }
+};
+
+// Where the support of support point i reaches up to: the top of the layer
+// under it, less --top-gap-layers.
+double point_top(const overhang::SupportPoint& p, const ModelView& m, const Settings& s) {
+    double z = m.snap_down(p.z);
+    if (z < 0) z = p.z;
+    for (int k = 0; k < s.top_gap_layers; ++k) z = m.snap_down(z - 1e-3);
+    return z;
+}
+
 }  // namespace
 
-Candidate best_bridge(const std::vector<Active>& active, const std::vector<double>& layer_tops, const Settings& s) {
-    auto top = top_bridges(active, layer_tops, s, {}, 1, nullptr);
-    return top.empty() ? Candidate{} : top.front();
+ModelView model_view(const Obstacles& obs) {
+    auto index = std::make_shared<LayerIndex>();
+    for (int l = 0; l < obs.layer_count(); ++l) index->by_z.emplace_back(obs.layer_z(l), l);
+    std::stable_sort(index->by_z.begin(), index->by_z.end());
+    ModelView v;
+    for (const auto& [z, l] : index->by_z)
+        if (z > 1e-6 && (v.layer_tops.empty() || z > v.layer_tops.back() + 1e-6)) v.layer_tops.push_back(z);
+    v.segment_clear = [&obs, index](double z, double x0, double y0, double x1, double y1, double r) {
+        for (int l : index->at(z))
+            if (!obs.segment_clear(l, x0, y0, x1, y1, r)) return false;
+        return true;
+    };
+    v.disc_clear = [&obs, index](double z, double x, double y, double r) {
+        for (int l : index->at(z))
+            if (!obs.disc_clear(l, x, y, r)) return false;
+        return true;
+    };
+    v.model_top_below = [&obs, index](double z, double x, double y, double r) {
+        // model_below looks under a layer: ask from the layer above the top.
+        int above = index->above(z);
+        if (above >= 0) {
+            int l = obs.model_below(above, x, y, r);
+            return l < 0 ? 0.0 : obs.layer_z(l);
+        }
+        for (auto it = index->by_z.rbegin(); it != index->by_z.rend(); ++it)
+            if (it->first <= z + 1e-6 && !obs.disc_clear(it->second, x, y, r)) return it->first;
+        return 0.0;
+    };
+    return v;
+}
+
+std::optional<Candidate> best_bridge(const std::vector<Active>& active, const ModelView& model, const Settings& s) {
+    BridgeSearch search(model, s);
+    for (const Active& a : active) search.add(a);
+    return search.best();
+}
+
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const Obstacles& obstacles, const Settings& s) {
+    return plan_scaffold(points, model_view(obstacles), s);
+}
+
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& s) {
+    ModelView m = model;
+    if (s.buildplate_only && !m.end_stands && m.model_top_below)
+        m.end_stands = [&model, &s](double x, double y, double z) {
+            return model.model_top_below(z, x, y, s.pillar_radius) <= 0;
+        };
+    std::vector<Active> start;
+    for (int i : canonical_order(points)) {
+        const auto& p = points.points[i];
+        start.push_back({p.x, p.y, point_top(p, m, s), i});
+    }
+    BridgePlan plan = plan_bridges(start, m, s);
+    Scaffold out;
+    out.bridges = std::move(plan.bridges);
+    out.columns = std::move(plan.connectors);
+    for (const Active& a : plan.remaining) {
+        auto c = vertical_pillar(a, m, s);
+        if (c && c->z1 - c->z0 > 1e-6)
+            out.columns.push_back(*c);
+        else if (a.point >= 0)
+            out.dropped_points.push_back(a.point);
+    }
+    std::sort(out.dropped_points.begin(), out.dropped_points.end());
+    return out;
 }
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s) {
-    Scaffold out;
-    std::vector<double> tops;
-    for (const auto& l : stack.layers)
-        if (!l.purge) tops.push_back(l.z);
-    std::sort(tops.begin(), tops.end());
-    tops.erase(std::unique(tops.begin(), tops.end()), tops.end());
+    // Layers by z without purge lines: the layer above a height.
+    LayerIndex by_z;
+    for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
+        if (!stack.layers[i].purge) by_z.by_z.emplace_back(stack.layers[i].z, i);
+    std::stable_sort(by_z.by_z.begin(), by_z.by_z.end());
 
-    const LayersByZ by_z(stack);
-    std::vector<Active> active;
-    for (std::size_t i = 0; i < points.points.size(); ++i)
-        active.push_back({points.points[i].x, points.points[i].y, points.points[i].z, static_cast<int>(i)});
-
-    // Greedy (METHOD.md step 4): take the best bridge that can really be
-    // built (clear of the model, ends standing), snap, repeat.
-    // A bar is printed on the two layers above zb, reaching into the pillar
-    // tops at both ends.
-    const BarClear bar_clear = [&](double x0, double y0, double x1, double y1, double zb) {
-        int first = by_z.above(zb);
-        int second = first < 0 ? -1 : by_z.above(stack.layers[first].z);
-        if (first < 0 || second < 0) return false;
-        double len = std::hypot(x1 - x0, y1 - y0);
-        double ex = (x1 - x0) / len * s.pillar_radius * 0.5, ey = (y1 - y0) / len * s.pillar_radius * 0.5;
-        return obs.line_clear(first, x0 - ex, y0 - ey, x1 + ex, y1 + ey) &&
-               obs.line_clear(second, x0 - ex, y0 - ey, x1 + ex, y1 + ey);
+    ModelView m = model_view(obs);
+    // Bridge ends need a pillar that drop_pillar can really build.
+    m.end_stands = [&](double x, double y, double z) {
+        int above = by_z.above(z);
+        return above >= 0 && drop_pillar(x, y, above, Top::Bridge, stack, obs, s).has_value();
     };
-    std::set<Key> rejected;
-    int rejects_left = 2 * kMaxRejects;  // bounded work when the model is in the way everywhere
-    while (rejects_left > 0) {
-        std::vector<Candidate> cands = top_bridges(active, tops, s, rejected, kMaxRejects, bar_clear);
-        if (cands.empty()) break;
-        bool placed = false;
-        for (const Candidate& c : cands) {
-        int first = by_z.above(c.z);
-        int second = first < 0 ? -1 : by_z.above(stack.layers[first].z);
-        bool ok = first >= 0 && second >= 0;
-        double ex = 0, ey = 0;
-        if (ok) {
-            double len = std::hypot(c.x1 - c.x0, c.y1 - c.y0);
-            ex = (c.x1 - c.x0) / len * s.pillar_radius * 0.5;
-            ey = (c.y1 - c.y0) / len * s.pillar_radius * 0.5;
-        }
-        for (int l : {first, second})
-            ok = ok && obs.segment_clear(l, c.x0 - ex, c.y0 - ey, c.x1 + ex, c.y1 + ey, s.support_width + s.xy_gap);
-        std::vector<Column> connectors;
-        std::vector<int> carried;
-        if (ok) {
-            for (int ai : c.carried) {
-                auto col = connector(c, active[ai], top_layer_of(active[ai], points, stack, by_z, s), stack, obs, s);
-                if (!col) continue;
-                connectors.push_back(*col);
-                carried.push_back(ai);
-            }
-            ok = bridge_gain(static_cast<int>(carried.size()), c.z, std::hypot(c.x1 - c.x0, c.y1 - c.y0)) > 0;
-        }
-        ok = ok && drop_pillar(c.x0, c.y0, first, Top::Bridge, stack, obs, s) &&
-             drop_pillar(c.x1, c.y1, first, Top::Bridge, stack, obs, s);
-        if (!ok) {
-            rejected.insert(key_of(c));
-            --rejects_left;
-            continue;
-        }
-        Bridge br{c.x0, c.y0, c.x1, c.y1, c.z, {}, c.gain, c.score};
-        for (int ai : carried)
-            if (active[ai].point >= 0) br.points.push_back(active[ai].point);
-        out.bridges.push_back(br);
-        out.columns.insert(out.columns.end(), connectors.begin(), connectors.end());
-        std::vector<Active> next;
-        for (std::size_t i = 0; i < active.size(); ++i)
-            if (!std::binary_search(carried.begin(), carried.end(), static_cast<int>(i))) next.push_back(active[i]);
-        next.push_back({c.x0, c.y0, c.z, -1});
-        next.push_back({c.x1, c.y1, c.z, -1});
-        active = std::move(next);
-        placed = true;
-        break;
-        }
-        if (!placed && cands.size() < static_cast<std::size_t>(kMaxRejects)) break;
+    std::vector<Active> start;
+    for (int i : canonical_order(points)) {
+        const auto& p = points.points[i];
+        int t = stack.layers[p.layer].below;
+        for (int k = 0; k < s.top_gap_layers && t >= 0; ++k) t = stack.layers[t].below;
+        if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
+        start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
-
-    // Everything still active stands on a pillar.
-    for (const Active& a : active) {
+    BridgePlan plan = plan_bridges(start, m, s);
+    Scaffold out;
+    out.bridges = std::move(plan.bridges);
+    out.columns = std::move(plan.connectors);
+    std::vector<Active> rest = std::move(plan.remaining);
+    // Points with no layer under them were never planned: they fall to pillars (and are dropped).
+    std::vector<char> planned(points.points.size(), 0);
+    for (const Active& a : start) planned[a.point] = 1;
+    for (int i : canonical_order(points))
+        if (!planned[i]) rest.push_back({points.points[i].x, points.points[i].y, points.points[i].z, i});
+    for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
         auto chain = overhang_layer < 0 ? std::nullopt
                                         : drop_pillar(a.x, a.y, overhang_layer, a.point >= 0 ? Top::Contact : Top::Bridge,

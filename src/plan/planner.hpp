@@ -2,41 +2,40 @@
 // The bridge scaffolding of Dumas, Hergel and Lefebvre (2014), as in Tupek's
 // report: horizontal bridges carry several support points through slanted
 // connectors, so only the bridge ends and the points left over need pillars.
+// Hands on a Scaffold (bridges, connectors, pillars) in plain geometry.
+#include <optional>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
 #include "overhang/overhangs.hpp"
+#include "plan/candidates.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/scaffold.hpp"
 
 namespace scaffold::plan {
 
-// A point the planner still has to hold: a support point, or the end of a
-// bridge already placed (which a lower bridge or a pillar must carry).
-struct Active {
-    double x = 0, y = 0, z = 0;  // z: where its support must reach up to
-    int point = -1;              // support point index, or -1 for a bridge end
-};
+// Radius of a slanted connector: it stays on the 0.9 mm wide bridge bar.
+inline constexpr double kConnectorRadius = 0.75;
 
-// Scoring of the method (METHOD.md step 4), exposed for tests.
-double bridge_gain(int supported, double z, double length);
-double bridge_score(double gain, int supported, double l_max);
+// The model as the planner sees it, answered by the real obstacle rasters.
+// The view refers to `obstacles`, which must outlive it.
+ModelView model_view(const Obstacles& obstacles);
 
-// One candidate bridge at height z between (x0,y0) and (x1,y1) and the
-// active points it would carry.
-struct Candidate {
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z = 0;
-    std::vector<int> carried;  // indices into the active list
-    double gain = 0, score = 0, l_max = 0;
-};
+// The best bridge for these active points (ids = positions in `active`), or
+// nullopt when none has positive gain: the first step of the greedy loop.
+std::optional<Candidate> best_bridge(const std::vector<Active>& active, const ModelView& model,
+                                     const Settings& settings);
 
-// The best-scoring candidate over all sweep directions, or one with
-// carried.empty() when no bridge has positive gain. `clear` filters bridges
-// and connectors against the model (nullptr: no model).
-Candidate best_bridge(const std::vector<Active>& active, const std::vector<double>& layer_tops,
-                      const Settings& settings);
+// --method scaffold, as pure geometry (METHOD.md step 4): greedy bridges,
+// slanted connectors from each bridge to the points it carries, and a
+// vertical pillar under every point left (down to the bed, or to the model's
+// top where the model is below it). Input order does not matter.
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const Obstacles& obstacles, const Settings& settings);
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& settings);
 
-// --method scaffold.
+// The pipeline's: the same bridges, but every pillar (under points and
+// bridge ends) is dropped by drop_pillar, which steps around the model, and
+// a bridge is placed only where both its ends get one.
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                        const Obstacles& obstacles, const Settings& settings);
 

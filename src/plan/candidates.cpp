@@ -1,0 +1,339 @@
+#include "plan/candidates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+namespace scaffold::plan {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace {
+constexpr double kEps = 1e-9;
+constexpr int kLowerHeights = 3;  // a blocked bar is retried this many height steps lower
+// A seed's best bar is tested against the model only when it is the best of
+// all (most never are); after this many blocked ones the seed tests every
+// bar that would become its best while searching, bounding the re-searches.
+constexpr int kLazyBars = 4;
+}  // namespace
+
+double bridge_gain(int supported, double z, double length) { return (supported - 2) * z - length; }
+
+double bridge_score(double gain, int supported, double l_max) { return gain - supported * l_max; }
+
+double max_lean_per_layer(double h, const Settings& s) {
+    double reach = h * std::tan(s.overhang_angle_deg * std::numbers::pi / 180) + s.support_width / 2;
+    return std::min(kMaxLeanPerLayer * s.pillar_radius, reach);
+}
+
+double ModelView::snap_down(double z) const {
+    if (layer_tops.empty()) return z;
+    auto it = std::upper_bound(layer_tops.begin(), layer_tops.end(), z + 1e-6);
+    return it == layer_tops.begin() ? -1 : *(it - 1);
+}
+
+std::vector<double> ModelView::tops_between(double z_lo, double z_hi, double layer_height) const {
+    std::vector<double> out;
+    if (layer_tops.empty()) {
+        // Layers every layer_height from the bed.
+        for (long i = std::lround(std::floor(z_lo / layer_height + 1e-6)) + 1; static_cast<double>(i) * layer_height <= z_hi + 1e-6; ++i)
+            out.push_back(static_cast<double>(i) * layer_height);
+        return out;
+    }
+    auto it = std::upper_bound(layer_tops.begin(), layer_tops.end(), z_lo + 1e-6);
+    for (; it != layer_tops.end() && *it <= z_hi + 1e-6; ++it) out.push_back(*it);
+    return out;
+}
+
+struct BridgeSearch::Index {
+    using Point = bg::model::point<double, 2, bg::cs::cartesian>;
+    using Box = bg::model::box<Point>;
+    using Value = std::pair<Point, int>;
+    bgi::rtree<Value, bgi::rstar<16>> tree;
+
+    std::vector<int> in_box(double x0, double y0, double x1, double y1) const {
+        std::vector<Value> hits;
+        tree.query(bgi::intersects(Box(Point(x0, y0), Point(x1, y1))), std::back_inserter(hits));
+        std::vector<int> ids;
+        ids.reserve(hits.size());
+        for (const auto& h : hits) ids.push_back(h.second);
+        std::sort(ids.begin(), ids.end());  // the tree's order is not ours to rely on
+        return ids;
+    }
+};
+
+BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings)
+    : model_(model), s_(settings), index_(std::make_shared<Index>()) {
+    reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
+}
+
+BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y1, double z) {
+    auto r = [](double v) { return std::lround(v * 1000); };
+    // The same bar from either end is the same bar.
+    if (std::make_pair(r(x1), r(y1)) < std::make_pair(r(x0), r(y0))) {
+        std::swap(x0, x1);
+        std::swap(y0, y1);
+    }
+    return {r(x0), r(y0), r(x1), r(y1), r(z)};
+}
+
+int BridgeSearch::add(const Active& a) {
+    int id = size();
+    points_.push_back(a);
+    alive_.push_back(1);
+    seeds_.resize(seeds_.size() + static_cast<std::size_t>(s_.sweep_directions));
+    index_->tree.insert({Index::Point(a.x, a.y), id});
+    mark_around(a.x, a.y);  // its own seeds, and those whose window it enters
+    return id;
+}
+
+void BridgeSearch::remove(int id) {
+    if (!alive_[id]) return;
+    alive_[id] = 0;
+    index_->tree.remove(Index::Value{Index::Point(points_[id].x, points_[id].y), id});
+    for (int k = 0; k < s_.sweep_directions; ++k) {
+        Seed& sd = seeds_[static_cast<std::size_t>(id * s_.sweep_directions + k)];
+        if (sd.has) ranked_.erase({-sd.best.score, id * s_.sweep_directions + k});
+        sd.has = false;
+        sd.dirty = false;
+    }
+    mark_around(points_[id].x, points_[id].y);
+}
+
+// Seeds whose window (30 mm along their sweep line, 5 mm across) holds (x, y).
+void BridgeSearch::mark_around(double x, double y) {
+    const int D = s_.sweep_directions;
+    for (int id : index_->in_box(x - reach_, y - reach_, x + reach_, y + reach_)) {
+        double dx = x - points_[id].x, dy = y - points_[id].y;
+        for (int k = 0; k < D; ++k) {
+            int seed = id * D + k;
+            if (seeds_[seed].dirty) continue;
+            double th = k * std::numbers::pi / D;
+            double du = dx * std::cos(th) + dy * std::sin(th), dv = -dx * std::sin(th) + dy * std::cos(th);
+            if (std::abs(du) > s_.bridge_max_length + 1e-6 || std::abs(dv) > s_.bridge_max_offset + 1e-6) continue;
+            seeds_[seed].dirty = true;
+            dirty_.push_back(seed);
+        }
+    }
+}
+
+bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double z) {
+    if (!model_.segment_clear) return true;
+    Key key = key_of(x0, y0, x1, y1, z);
+    if (auto it = bar_cache_.find(key); it != bar_cache_.end()) return it->second;
+    // The bar fills the layers up to kBarThickness above z; its ends reach
+    // into the pillar tops, so the whole pillar radius keeps the gap.
+    std::vector<double> layers = model_.tops_between(z, z + kBarThickness, s_.layer_height);
+    bool ok = !layers.empty();
+    for (double zl : layers)
+        ok = ok && model_.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
+    bar_cache_.emplace(key, ok);
+    return ok;
+}
+
+// The best bridge on the sweep line of direction k through point id, among
+// those whose span contains the point. The line meets the anchoring segment
+// (5 mm either side, along the sweep) of every point in the band, at the
+// point's own position along the line: those are the candidate ends.
+void BridgeSearch::evaluate(int seed) {
+    const int D = s_.sweep_directions;
+    const int id = seed / D, k = seed % D;
+    Seed& sd = seeds_[seed];
+    if (sd.has) ranked_.erase({-sd.best.score, seed});
+    sd.dirty = false;
+    sd.has = false;
+    if (!alive_[id]) return;
+    ++evaluations_;
+
+    const double L = s_.bridge_max_length, O = s_.bridge_max_offset;
+    const double th = k * std::numbers::pi / D, c = std::cos(th), sn = std::sin(th);
+    const Active& q = points_[id];
+    const double uq = q.x * c + q.y * sn, vq = -q.x * sn + q.y * c;
+    const double hx = L * std::abs(c) + O * std::abs(sn), hy = L * std::abs(sn) + O * std::abs(c);
+    const double lean_per_mm = max_lean_per_layer(s_.layer_height, s_) / s_.layer_height;
+
+    struct Near {
+        double du, adv, t, w;  // along, |across|, highest bar that carries it, across + its z
+        int id;
+    };
+    std::vector<Near> pts;
+    for (int p : index_->in_box(q.x - hx, q.y - hy, q.x + hx, q.y + hy)) {
+        const Active& a = points_[p];
+        double du = a.x * c + a.y * sn - uq, adv = std::abs(-a.x * sn + a.y * c - vq);
+        if (std::abs(du) > L + 1e-6 || adv > O + 1e-6) continue;
+        // Carried when at least the drop above the bar, and its connector
+        // from the bar's top leans no more than printable.
+        double t = std::min(a.z - s_.bridge_min_drop, a.z - kBarThickness - adv / lean_per_mm);
+        pts.push_back({du, adv, t, adv + a.z, p});
+    }
+    const int n = static_cast<int>(pts.size());
+    if (n < 3) return;
+    std::stable_sort(pts.begin(), pts.end(), [](const Near& a, const Near& b) { return a.du < b.du; });
+
+    // Ends: a on the left (du <= 0, first of its equal-du group), b on the
+    // right (du >= 0, last of its group), so [a..b] is exactly the span.
+    std::vector<int> left, right;
+    for (int i = 0; i < n; ++i) {
+        if (pts[i].du <= kEps && (i == 0 || pts[i - 1].du < pts[i].du)) left.push_back(i);
+        if (pts[i].du >= -kEps && (i == n - 1 || pts[i + 1].du > pts[i].du)) right.push_back(i);
+    }
+    std::reverse(left.begin(), left.end());  // outward from the point
+    int a_max = -1, b_min = n;  // last point at du <= 0, first at du >= 0 (the point itself is at 0)
+    for (int i = 0; i < n; ++i) {
+        if (pts[i].du <= kEps) a_max = i;
+        if (pts[i].du >= -kEps && b_min == n) b_min = i;
+    }
+
+    // Candidate heights: where each point stops being carried, snapped to a layer top.
+    std::vector<double> heights;
+    for (const Near& p : pts) {
+        double z = model_.snap_down(p.t);
+        if (z > kEps) heights.push_back(z);
+    }
+    std::sort(heights.begin(), heights.end(), std::greater<>());
+    heights.erase(std::unique(heights.begin(), heights.end(), [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+                  heights.end());
+
+    Candidate best;
+    bool has = false;
+    std::vector<int> count(n + 1);
+    std::vector<double> wl(n), wr(n);
+    // Carried count and l_max of span [a..b] at height z, scanned directly.
+    auto span_at = [&](int a, int b, double z, int& kk, double& wmax) {
+        kk = 0;
+        wmax = 0;
+        for (int i = a; i <= b; ++i)
+            if (pts[i].t >= z - kEps) {
+                ++kk;
+                wmax = std::max(wmax, pts[i].w);
+            }
+    };
+    auto take = [&](int a, int b, double z, int kk, double wmax) {
+        double len = pts[b].du - pts[a].du;
+        best.x0 = (uq + pts[a].du) * c - vq * sn;
+        best.y0 = (uq + pts[a].du) * sn + vq * c;
+        best.x1 = (uq + pts[b].du) * c - vq * sn;
+        best.y1 = (uq + pts[b].du) * sn + vq * c;
+        best.z = z;
+        best.gain = bridge_gain(kk, z, len);
+        best.l_max = wmax - z;
+        best.score = bridge_score(best.gain, kk, best.l_max);
+        best.seed = seed;
+        best.end0 = pts[a].id;
+        best.end1 = pts[b].id;
+        best.carried.clear();
+        for (int i = a; i <= b; ++i)
+            if (pts[i].t >= z - kEps) best.carried.push_back(pts[i].id);
+        std::sort(best.carried.begin(), best.carried.end());
+        has = true;
+    };
+    const bool eager = sd.blocked >= kLazyBars;
+    auto usable = [&](int a, int b, double z) {
+        double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
+        double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
+        return !rejected_.count(key_of(x0, y0, x1, y1, z)) && (!eager || bar_clear(x0, y0, x1, y1, z));
+    };
+
+    for (double z : heights) {
+        // No bridge at this height can beat the best so far: every carried
+        // point is at least the drop above z, so l_max >= drop.
+        int all = 0;
+        for (const Near& p : pts) all += p.t >= z - kEps;
+        if (all < 3) continue;
+        int kb = z > s_.bridge_min_drop ? all : 3;
+        if (has && (kb - 2) * z - s_.bridge_min_length - kb * s_.bridge_min_drop <= best.score) continue;
+        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + (pts[i].t >= z - kEps);
+        // wl[a]: largest w carried in [a..a_max]; wr[b]: in [b_min..b]; the
+        // two overlap only on points at du = 0, so together they cover [a..b].
+        double m = 0;
+        for (int i = a_max; i >= 0; --i) {
+            if (pts[i].t >= z - kEps) m = std::max(m, pts[i].w);
+            wl[i] = m;
+        }
+        m = 0;
+        for (int i = b_min; i < n; ++i) {
+            if (pts[i].t >= z - kEps) m = std::max(m, pts[i].w);
+            wr[i] = m;
+        }
+        for (int a : left) {
+            for (int b : right) {
+                double len = pts[b].du - pts[a].du;
+                if (len > L + kEps) break;
+                if (len < s_.bridge_min_length - kEps) continue;
+                int kk = count[b + 1] - count[a];
+                if (kk < 3) continue;
+                double wmax = std::max(wl[a], wr[b]);
+                double gain = bridge_gain(kk, z, len);
+                if (gain <= 0) continue;
+                double score = bridge_score(gain, kk, wmax - z);
+                if (has && score <= best.score) continue;
+                if (usable(a, b, z)) {
+                    take(a, b, z, kk, wmax);
+                    continue;
+                }
+                // Blocked (by the model or a failed check): the same span a few steps lower.
+                for (int j = 1; j < kLowerHeights; ++j) {
+                    double z2 = model_.snap_down(z - j * s_.bridge_height_step);
+                    if (z2 <= kEps) break;
+                    int k2;
+                    double w2;
+                    span_at(a, b, z2, k2, w2);
+                    double g2 = bridge_gain(k2, z2, len);
+                    if (g2 <= 0) continue;
+                    if (has && bridge_score(g2, k2, w2 - z2) <= best.score) continue;
+                    if (usable(a, b, z2)) {
+                        take(a, b, z2, k2, w2);
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    if (!has) return;
+    sd.best = std::move(best);
+    sd.has = true;
+    sd.bar_checked = eager;
+    ranked_.insert({-sd.best.score, seed});
+}
+
+std::optional<Candidate> BridgeSearch::best() {
+    for (;;) {
+        std::vector<int> todo;
+        todo.swap(dirty_);
+        std::sort(todo.begin(), todo.end());
+        for (int seed : todo)
+            if (seeds_[seed].dirty) evaluate(seed);
+        if (ranked_.empty()) return std::nullopt;
+        int seed = ranked_.begin()->second;
+        Seed& sd = seeds_[seed];
+        const Candidate& c = sd.best;
+        Key key = key_of(c.x0, c.y0, c.x1, c.y1, c.z);
+        // Another seed's bridge on the same line may have been rejected since.
+        bool ok = !rejected_.count(key);
+        if (ok && !sd.bar_checked) {
+            ok = bar_clear(c.x0, c.y0, c.x1, c.y1, c.z);
+            if (ok) sd.bar_checked = true;
+            else {
+                rejected_.insert(key);
+                ++sd.blocked;
+            }
+        }
+        if (ok) return c;
+        sd.dirty = true;
+        dirty_.push_back(seed);
+    }
+}
+
+void BridgeSearch::reject(const Candidate& c) {
+    rejected_.insert(key_of(c.x0, c.y0, c.x1, c.y1, c.z));
+    if (c.seed >= 0 && !seeds_[c.seed].dirty) {
+        seeds_[c.seed].dirty = true;
+        dirty_.push_back(c.seed);
+    }
+}
+
+}  // namespace scaffold::plan

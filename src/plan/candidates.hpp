@@ -1,0 +1,137 @@
+#pragma once
+// Candidate bridges of the scaffolding (METHOD.md step 4): for each sweep
+// direction and each active point, the bridges on the sweep line through the
+// point, kept per (point, direction) and updated only where the active set
+// changes, so the greedy planner does not rescan everything at each step.
+// Pure geometry: the model is seen through ModelView, which tests fake.
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "gcode/settings.hpp"
+
+namespace scaffold::plan {
+
+// A slanted connector's centre may move at most this fraction of the pillar
+// radius between consecutive layers (0.5 mm at r = 1 over 0.2 mm layers, as
+// the validator's reach h*tan(55 deg) + half a bead allows). On thinner
+// layers that reach is smaller and is used instead (max_lean_per_layer).
+inline constexpr double kMaxLeanPerLayer = 0.5;
+
+// Thickness of a bridge bar (two layers); its connectors start on top of it.
+inline constexpr double kBarThickness = 0.4;
+
+// Scoring of the method, exposed for tests.
+double bridge_gain(int supported, double z, double length);
+double bridge_score(double gain, int supported, double l_max);
+
+// Largest sideways move of a connector's centre over one layer of height h.
+double max_lean_per_layer(double h, const Settings& settings);
+
+// What the planner asks about the model, by layer top z (not index), so a
+// test can describe a model with a few lambdas. An empty function means "no
+// model": everything is clear and pillars reach the bed.
+struct ModelView {
+    // Tops of the printed layers, ascending and distinct. Empty: layers every
+    // settings.layer_height from 0, and heights are not snapped.
+    std::vector<double> layer_tops;
+    // The segment thickened by r is clear of the model on the layer with top z.
+    std::function<bool(double z, double x0, double y0, double x1, double y1, double r)> segment_clear;
+    // The disc is clear of the model on the layer with top z.
+    std::function<bool(double z, double x, double y, double r)> disc_clear;
+    // Top z of the highest model layer below z that touches the disc, or 0 (the bed).
+    std::function<double(double z, double x, double y, double r)> model_top_below;
+    // Whether a bridge end at (x, y, z) can be held at all (a pillar fits
+    // under it); empty: always.
+    std::function<bool(double x, double y, double z)> end_stands;
+
+    // Largest layer top <= z (z itself without layers); < 0 when none.
+    double snap_down(double z) const;
+    // Tops of the layers whose top lies in (z_lo, z_hi], ascending.
+    std::vector<double> tops_between(double z_lo, double z_hi, double layer_height) const;
+};
+
+// A point the planner still has to hold: a support point, or the end of a
+// placed bridge that a lower bridge or a pillar must carry.
+struct Active {
+    double x = 0, y = 0;
+    double z = 0;   // where its support reaches up to (a connector's or pillar's top)
+    int point = -1; // support point index, or -1 for a bridge end
+};
+
+// One candidate bridge at height z (bottom of the bar) between (x0,y0) and
+// (x1,y1), with the active points it would carry (ids in BridgeSearch).
+struct Candidate {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0, z = 0;
+    std::vector<int> carried;  // ascending
+    double gain = 0, score = 0, l_max = 0;
+    int seed = -1;             // which (point, direction) found it
+    int end0 = -1, end1 = -1;  // the active points whose anchoring segments give the ends
+};
+
+// The set of active points with, for each point and sweep direction, the
+// best bridge on the sweep line through it whose span contains the point.
+//
+// Cost. Let D = sweep directions, N = active points and K the points in a
+// 60 x 10 mm window (the reach of a bridge: 30 mm either way along the sweep
+// line, 5 mm across; bounded by the point density, not by N). One seed
+// (point, direction) costs an rtree query, O(log N + K), plus its search,
+// O(H K^2) with H <= K candidate heights. Building all seeds is O(D N (log N
+// + K^3)); each greedy step changes O(1) points and recomputes only the O(D K)
+// seeds whose window holds one of them, O(D K^4) per step, so planning is
+// O(D N K^4 + N log N) for N points at a fixed density: linear in N.
+class BridgeSearch {
+public:
+    BridgeSearch(const ModelView& model, const Settings& settings);
+
+    int add(const Active& a);   // returns the point's id
+    void remove(int id);
+    const Active& active(int id) const { return points_[id]; }
+    bool alive(int id) const { return alive_[id]; }
+    int size() const { return static_cast<int>(points_.size()); }
+
+    // The best-scoring candidate over all seeds whose bar is clear of the
+    // model and which was not rejected; nullopt when no bridge has positive gain.
+    std::optional<Candidate> best();
+    // Never offer this bridge again (it failed a later check).
+    void reject(const Candidate& c);
+
+    // Seeds recomputed so far (for the benchmark).
+    long long seed_evaluations() const { return evaluations_; }
+
+private:
+    struct Seed {
+        bool dirty = false;  // queued in dirty_
+        bool has = false;
+        bool bar_checked = false;  // best's bar already tested against the model
+        int blocked = 0;           // bars of this seed found blocked so far
+        Candidate best;
+    };
+    using Key = std::tuple<long, long, long, long, long>;
+    static Key key_of(double x0, double y0, double x1, double y1, double z);
+
+    void mark_around(double x, double y);
+    void evaluate(int seed);
+    bool bar_clear(double x0, double y0, double x1, double y1, double z);
+
+    const ModelView& model_;
+    const Settings& s_;
+    double reach_ = 0;  // radius of the window's bounding circle
+    std::vector<Active> points_;
+    std::vector<char> alive_;
+    std::vector<Seed> seeds_;       // id * D + direction
+    std::vector<int> dirty_;        // seeds to recompute before the next best()
+    std::set<std::pair<double, int>> ranked_;  // (-score, seed): best first, ties by seed
+    std::set<Key> rejected_;
+    std::map<Key, bool> bar_cache_;
+    long long evaluations_ = 0;
+    struct Index;                   // the rtree over alive points
+    std::shared_ptr<Index> index_;
+};
+
+}  // namespace scaffold::plan
