@@ -179,14 +179,17 @@ void draw_unheld_stretches(const layers::Segment& sg, const layers::BitGrid& hel
 // one straight piece, as in METHOD.md's rule (b) and scaffold-check.
 constexpr double kStraightDeg = 10;
 
-// Does segment b continue segment a as one straight piece of one path?
-bool continues_straight(const layers::Segment& a, const layers::Segment& b) {
+// Does segment b continue segment a on one path, within 10 deg of the
+// piece's first segment? (Against the first, not the one before: a finely
+// divided circle turns a few degrees a move and is no straight bridge; the
+// validator judges pieces the same way.)
+bool continues_straight(const layers::Segment& first, const layers::Segment& a, const layers::Segment& b) {
     if (b.move != a.move + 1) return false;
     if (std::abs(b.x0 - a.x1) > 1e-3f || std::abs(b.y0 - a.y1) > 1e-3f) return false;
-    double adx = a.x1 - a.x0, ady = a.y1 - a.y0, bdx = b.x1 - b.x0, bdy = b.y1 - b.y0;
-    double la = std::hypot(adx, ady), lb = std::hypot(bdx, bdy);
-    if (la <= 0 || lb <= 0) return false;
-    return (adx * bdx + ady * bdy) / (la * lb) >= std::cos(kStraightDeg * std::numbers::pi / 180);
+    double fdx = first.x1 - first.x0, fdy = first.y1 - first.y0, bdx = b.x1 - b.x0, bdy = b.y1 - b.y0;
+    double lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
+    if (lf <= 0 || lb <= 0) return false;
+    return (fdx * bdx + fdy * bdy) / (lf * lb) >= std::cos(kStraightDeg * std::numbers::pi / 180);
 }
 
 struct Sample {
@@ -265,7 +268,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
                 // split bridge lines and overhang perimeters into many moves.
                 std::size_t last = k;
                 while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) &&
-                       continues_straight(segs[last], segs[last + 1]))
+                       continues_straight(segs[k], segs[last], segs[last + 1]))
                     ++last;
                 bridge_piece(segs, k, last, held, s.resolution, s.max_bridge, over, spanned, samples);
                 k = last;

@@ -111,6 +111,21 @@ SynthGcode deck(const char* role) {
     return g;
 }
 
+// Straight on the towers, and over the 8 mm gap a shallow arc (1 mm
+// sagitta, 12 moves of about 4 deg each; the whole arc turns 50 deg).
+void arc_line(SynthGcode& g, double xa, double xb, double y) {
+    const double a0 = 104.5, a1 = 113.5;
+    const double c = a1 - a0, h = 1.0, r = (c * c / 4 + h * h) / (2 * h);
+    const double half = std::asin(c / 2 / r), cx = (a0 + a1) / 2, cy = y + h - r;
+    g.travel(xa, y);
+    g.extrude(a0, y);
+    for (int k = 1; k <= 12; ++k) {
+        double a = std::numbers::pi / 2 + half - 2 * half * k / 12;
+        g.extrude(cx + r * std::cos(a), cy + r * std::sin(a));
+    }
+    g.extrude(xb, y);
+}
+
 }  // namespace
 
 TEST(OverhangDetect, ShelfFoundAtItsFirstLayerAndCovered) {
@@ -262,4 +277,20 @@ TEST(OverhangDetect, MarkedBridgeTooLongOrNotStraightGetsPoints) {
         EXPECT_GT(p.x, 105);
         EXPECT_LT(p.x, 113);
     }
+}
+
+// Straight means within 10 deg of the piece's first direction, as the
+// validator has it: a curved marked bridge whose moves each turn only 4 deg
+// is no straight span, so its middle is overhang.
+TEST(OverhangDetect, MarkedBridgeThatCurvesGetsPoints) {
+    Found arc = detect(towers_and_deck(8, "Bridge infill", arc_line));
+    std::size_t on_bridge = 0;
+    for (const auto& p : arc.points.points) {
+        if (std::abs(p.z - 4.0) > 1e-6) continue;
+        ++on_bridge;
+        EXPECT_GT(p.x, 105);
+        EXPECT_LT(p.x, 113);
+    }
+    EXPECT_GE(on_bridge, 2u);
+    expect_covered(arc, 3.5);
 }
