@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <boost/geometry.hpp>
@@ -238,14 +239,30 @@ void BridgeSearch::evaluate(int seed) {
         return !rejected_.count(key_of(x0, y0, x1, y1, z)) && (!eager || bar_clear(x0, y0, x1, y1, z));
     };
 
+    // Points by the highest bar that carries them, to grow the carried set
+    // as the height goes down.
+    std::vector<int> by_t(n);
+    for (int i = 0; i < n; ++i) by_t[i] = i;
+    std::stable_sort(by_t.begin(), by_t.end(), [&](int a, int b) { return pts[a].t > pts[b].t; });
+    std::vector<double> ws;  // w of the points carried at the current height, ascending
+    std::size_t next = 0;
     for (double z : heights) {
-        // No bridge at this height can beat the best so far: every carried
-        // point is at least the drop above z, so l_max >= drop.
-        int all = 0;
-        for (const Near& p : pts) all += p.t >= z - kEps;
-        if (all < 3) continue;
-        int kb = z > s_.bridge_min_drop ? all : 3;
-        if (has && (kb - 2) * z - s_.bridge_min_length - kb * s_.bridge_min_drop <= best.score) continue;
+        while (next < by_t.size() && pts[by_t[next]].t >= z - kEps) {
+            double w = pts[by_t[next++]].w;
+            ws.insert(std::upper_bound(ws.begin(), ws.end(), w), w);
+        }
+        if (ws.size() < 3) continue;
+        // No bridge at this height can beat the best so far: k carried
+        // points have l_max >= (k-th smallest w) - z, so the score is at
+        // most (k - 2) z - min length - k (w_k - z).
+        if (has) {
+            double bound = -std::numeric_limits<double>::infinity();
+            for (std::size_t kk = 3; kk <= ws.size(); ++kk) {
+                double kd = static_cast<double>(kk);
+                bound = std::max(bound, (kd - 2) * z - s_.bridge_min_length - kd * (ws[kk - 1] - z));
+            }
+            if (bound <= best.score) continue;
+        }
         for (int i = 0; i < n; ++i) count[i + 1] = count[i] + (pts[i].t >= z - kEps);
         // wl[a]: largest w carried in [a..a_max]; wr[b]: in [b_min..b]; the
         // two overlap only on points at du = 0, so together they cover [a..b].
