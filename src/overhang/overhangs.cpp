@@ -240,27 +240,36 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     Overhangs out;
     const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-    // The material of the layer beneath, usually the previous step's layer.
-    int drawn_index = -1;
-    layers::BitGrid drawn;
-    auto material = [&](int index) {
-        if (index != drawn_index) {
-            drawn = proto;
-            layers::draw_layer(drawn, stack.layers[index]);
-            drawn_index = index;
-        }
-        return drawn;
-    };
+    // Scratch grids for the whole stack, cleared per layer rather than
+    // reallocated: the layer beneath (all its material, and the part of it
+    // that can enclose a hole: a skirt or brim loop holds what lies on it but
+    // encloses nothing, as in the validator), and this layer's overhang and
+    // held marked bridges.
+    layers::BitGrid below = proto, rim = proto, over = proto, spanned = proto;
+    bool below_has_skirt = false;
+    int below_index = -1;
     std::vector<Sample> samples;
     for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
-        const layers::BitGrid below = material(layer.below);
+        if (layer.below != below_index) {
+            const layers::Layer& under = stack.layers[layer.below];
+            below.clear();
+            layers::draw_layer(below, under);
+            below_has_skirt = std::any_of(under.segments.begin(), under.segments.end(),
+                                          [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
+            if (below_has_skirt) {
+                rim.clear();
+                for (const layers::Segment& sg : under.segments)
+                    if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            }
+            below_index = layer.below;
+        }
         // Half a cell inside the validator's reach (which adds half a cell), so
         // raster alignment never decides a borderline bead.
-        layers::BitGrid held = below.dilated(std::max(0.0, layer.height * slope - s.resolution / 2));
-        layers::BitGrid over = proto;
-        layers::BitGrid spanned = proto;
+        const layers::BitGrid held = below.dilated(std::max(0.0, layer.height * slope - s.resolution / 2));
+        over.clear();
+        spanned.clear();
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
             if (gcode::is_bridge(segs[k].role)) {
@@ -279,15 +288,10 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             // the centre line make overhang, drawn at the bead's width.
             draw_unheld_stretches(segs[k], held, s.resolution, over);
         }
-        layers::BitGrid mine = proto;  // all of this layer, for the next one
-        layers::draw_layer(mine, layer);
-        // This layer's material is the next layer's "below".
-        drawn = std::move(mine);
-        drawn_index = n;
         over.subtract(spanned);
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
-        if (over.any()) over.subtract(below.enclosed(over));
+        if (over.any()) over.subtract((below_has_skirt ? rim : below).enclosed(over));
         if (!over.any()) continue;
         // Drop specks: regions smaller than the minimum area.
         double cell_area = over.cell_area();

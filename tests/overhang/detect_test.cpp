@@ -294,3 +294,26 @@ TEST(OverhangDetect, MarkedBridgeThatCurvesGetsPoints) {
     EXPECT_GE(on_bridge, 2u);
     expect_covered(arc, 3.5);
 }
+
+// A skirt loop holds what lies on it but encloses nothing: the air between
+// the skirt and a small first layer is no filled footprint for the wider
+// second layer (as scaffold-check has it).
+TEST(OverhangDetect, SkirtEnclosesNothing) {
+    SynthGcode g;
+    g.layer(0.2);
+    g.type("Skirt/Brim");
+    g.rect_outline(94, 94, 116, 116);
+    g.type("External perimeter");
+    g.filled_rect(103, 103, 107, 107);
+    for (int l = 2; l <= 6; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.filled_rect(100, 100, 110, 110);
+    }
+    Found f = detect(g);
+    ASSERT_EQ(f.overhangs.layers.size(), 1u);
+    EXPECT_EQ(f.overhangs.layers[0].layer, 1);
+    EXPECT_GT(f.overhangs.area_mm2, 60);  // 100 mm^2 less the 4 x 4 mm block and its reach
+    EXPECT_GE(f.points.points.size(), 4u);
+    expect_covered(f, 3.5);
+}
