@@ -276,14 +276,26 @@ void BridgeSearch::evaluate(int seed) {
             if (pts[i].t >= z - kEps) m = std::max(m, pts[i].w);
             wr[i] = m;
         }
+        // With k carried, largest w at least W and length at least len, a
+        // span scores at most k (2z - W) - 2z - len, largest at k = 3 or at
+        // the most points there are: the bound that lets a span, or all
+        // longer spans from the same left end, be skipped.
+        auto cap = [&](int k_lo, int k_hi, double w, double len) {
+            double slope = 2 * z - w;
+            return std::max(k_lo * slope, k_hi * slope) - 2 * z - len;
+        };
         for (int a : left) {
+            const int k_all = count[n] - count[a];
+            if (k_all < 3) continue;
+            if (has && cap(3, k_all, wl[a], std::max(s_.bridge_min_length, -pts[a].du)) <= best.score) continue;
             for (int b : right) {
                 double len = pts[b].du - pts[a].du;
                 if (len > L + kEps) break;
                 if (len < s_.bridge_min_length - kEps) continue;
                 int kk = count[b + 1] - count[a];
-                if (kk < 3) continue;
                 double wmax = std::max(wl[a], wr[b]);
+                if (has && cap(std::max(kk, 3), k_all, wmax, len) <= best.score) break;
+                if (kk < 3) continue;
                 double gain = bridge_gain(kk, z, len);
                 if (gain <= 0) continue;
                 double score = bridge_score(gain, kk, wmax - z);
