@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
@@ -62,7 +63,7 @@ struct BridgeSearch::Index {
         std::vector<int> ids;
         ids.reserve(hits.size());
         for (const auto& h : hits) ids.push_back(h.second);
-        std::sort(ids.begin(), ids.end());  // the tree's order is not ours to rely on
+        // In the tree's order: callers must not depend on it.
         return ids;
     }
 };
@@ -173,7 +174,8 @@ void BridgeSearch::evaluate(int seed) {
     }
     const int n = static_cast<int>(pts.size());
     if (n < 3) return;
-    std::stable_sort(pts.begin(), pts.end(), [](const Near& a, const Near& b) { return a.du < b.du; });
+    // Along the line, ties by id: not by the tree's order, which depends on its history.
+    std::sort(pts.begin(), pts.end(), [](const Near& a, const Near& b) { return std::tie(a.du, a.id) < std::tie(b.du, b.id); });
 
     // Ends: a on the left (du <= 0, first of its equal-du group), b on the
     // right (du >= 0, last of its group), so [a..b] is exactly the span.
@@ -188,6 +190,10 @@ void BridgeSearch::evaluate(int seed) {
         if (pts[i].du <= kEps) a_max = i;
         if (pts[i].du >= -kEps && b_min == n) b_min = i;
     }
+    // Each end's group of points at the same du: [gbeg[i], gend[i]].
+    std::vector<int> gbeg(n), gend(n);
+    for (int i = 0; i < n; ++i) gbeg[i] = i > 0 && pts[i - 1].du == pts[i].du ? gbeg[i - 1] : i;
+    for (int i = n - 1; i >= 0; --i) gend[i] = i < n - 1 && pts[i + 1].du == pts[i].du ? gend[i + 1] : i;
 
     // Candidate heights: where each point stops being carried, snapped to a layer top.
     std::vector<double> heights;
@@ -284,11 +290,22 @@ void BridgeSearch::evaluate(int seed) {
             double slope = 2 * z - w;
             return std::max(k_lo * slope, k_hi * slope) - 2 * z - len;
         };
-        for (int a : left) {
+        // An end with nothing carried at it loses to the next end inwards
+        // (same points, shorter), unless that one is too short or was rejected.
+        auto rejected_span = [&](int a, int b) {
+            if (rejected_.empty()) return false;
+            double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
+            double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
+            return rejected_.count(key_of(x0, y0, x1, y1, z)) > 0;
+        };
+        for (std::size_t ia = 0; ia < left.size(); ++ia) {
+            const int a = left[ia];
             const int k_all = count[n] - count[a];
             if (k_all < 3) continue;
             if (has && cap(3, k_all, wl[a], std::max(s_.bridge_min_length, -pts[a].du)) <= best.score) continue;
-            for (int b : right) {
+            const int a_in = ia > 0 && count[gend[a] + 1] == count[a] ? left[ia - 1] : -1;
+            for (std::size_t ib = 0; ib < right.size(); ++ib) {
+                const int b = right[ib];
                 double len = pts[b].du - pts[a].du;
                 if (len > L + kEps) break;
                 if (len < s_.bridge_min_length - kEps) continue;
@@ -296,6 +313,12 @@ void BridgeSearch::evaluate(int seed) {
                 double wmax = std::max(wl[a], wr[b]);
                 if (has && cap(std::max(kk, 3), k_all, wmax, len) <= best.score) break;
                 if (kk < 3) continue;
+                if (a_in >= 0 && pts[b].du - pts[a_in].du >= s_.bridge_min_length - kEps && !rejected_span(a_in, b))
+                    continue;
+                if (ib > 0 && count[b + 1] == count[gbeg[b]]) {
+                    int b_in = right[ib - 1];
+                    if (pts[b_in].du - pts[a].du >= s_.bridge_min_length - kEps && !rejected_span(a, b_in)) continue;
+                }
                 double gain = bridge_gain(kk, z, len);
                 if (gain <= 0) continue;
                 double score = bridge_score(gain, kk, wmax - z);
