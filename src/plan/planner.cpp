@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <tuple>
 #include <numbers>
 #include <utility>
 
@@ -77,23 +79,37 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
     BridgePlan out;
     BridgeSearch search(m, s);
     for (const Active& a : start) search.add(a);
+    // Whether a pillar fits under a bridge end; the same ends come back
+    // with many candidates, so each is asked once.
+    std::map<std::tuple<long, long, long>, bool> stands;
+    auto end_ok = [&](double x, double y, double z) {
+        if (!m.end_stands) return true;
+        auto key = std::make_tuple(std::lround(x * 1000), std::lround(y * 1000), std::lround(z * 1000));
+        auto it = stands.find(key);
+        if (it == stands.end()) it = stands.emplace(key, m.end_stands(x, y, z)).first;
+        return it->second;
+    };
     // Bounded work where the model is in the way everywhere.
     long rejects_left = 80 + 2 * static_cast<long>(start.size());
     while (auto c = search.best()) {
+        const double len = std::hypot(c->x1 - c->x0, c->y1 - c->y0);
         std::vector<Column> connectors;
         std::vector<int> carried;
         double l_max = 0;
-        for (int id : c->carried) {
-            auto col = connector(*c, search.active(id), m, s);
-            if (!col) continue;
-            connectors.push_back(*col);
-            carried.push_back(id);
-            l_max = std::max(l_max, std::hypot(col->x1 - col->x0, col->y1 - col->y0) + col->z1 - c->z);
+        // Ends first (cached), then connectors until too many have failed
+        // for the gain to stay positive.
+        bool ok = end_ok(c->x0, c->y0, c->z) && end_ok(c->x1, c->y1, c->z);
+        for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
+            const int id = c->carried[i];
+            if (auto col = connector(*c, search.active(id), m, s)) {
+                connectors.push_back(*col);
+                carried.push_back(id);
+                l_max = std::max(l_max, std::hypot(col->x1 - col->x0, col->y1 - col->y0) + col->z1 - c->z);
+            }
+            int most = static_cast<int>(carried.size() + c->carried.size() - i - 1);
+            ok = bridge_gain(most, c->z, len) > 0;
         }
         const int k = static_cast<int>(carried.size());
-        const double len = std::hypot(c->x1 - c->x0, c->y1 - c->y0);
-        bool ok = bridge_gain(k, c->z, len) > 0;
-        if (ok && m.end_stands) ok = m.end_stands(c->x0, c->y0, c->z) && m.end_stands(c->x1, c->y1, c->z);
         if (!ok) {
             search.reject(*c);
             if (--rejects_left <= 0) break;
@@ -180,7 +196,13 @@ ModelView model_view(const Obstacles& obs) {
     for (const auto& [z, l] : index->by_z)
         if (z > 1e-6 && (v.layer_tops.empty() || z > v.layer_tops.back() + 1e-6)) v.layer_tops.push_back(z);
     v.segment_clear = [&obs, index](double z, double x0, double y0, double x1, double y1, double r) {
-        for (int l : index->at(z))
+        const std::vector<int> layers = index->at(z);
+        // Most bars the search asks about are blocked: the grown raster
+        // (model + obs.inflate) says so at a few cells' cost.
+        if (r >= obs.inflate)
+            for (int l : layers)
+                if (!obs.line_clear(l, x0, y0, x1, y1)) return false;
+        for (int l : layers)
             if (!obs.segment_clear(l, x0, y0, x1, y1, r)) return false;
         return true;
     };
