@@ -15,7 +15,7 @@ namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
 
 namespace {
-constexpr double kEps = 1e-9;
+constexpr double kEps = 1e-6;  // mm: the tolerance of snap_down, so a point is carried at its own height
 constexpr int kLowerHeights = 3;  // a blocked bar is retried this many height steps lower
 // A seed's best bar is tested against the model only when it is the best of
 // all (most never are); after this many blocked ones the seed tests every
@@ -179,16 +179,17 @@ void BridgeSearch::evaluate(int seed) {
 
     // Ends: a on the left (du <= 0, first of its equal-du group), b on the
     // right (du >= 0, last of its group), so [a..b] is exactly the span.
+    // Exact comparisons: the point itself is at du = 0 exactly.
     std::vector<int> left, right;
     for (int i = 0; i < n; ++i) {
-        if (pts[i].du <= kEps && (i == 0 || pts[i - 1].du < pts[i].du)) left.push_back(i);
-        if (pts[i].du >= -kEps && (i == n - 1 || pts[i + 1].du > pts[i].du)) right.push_back(i);
+        if (pts[i].du <= 0 && (i == 0 || pts[i - 1].du < pts[i].du)) left.push_back(i);
+        if (pts[i].du >= 0 && (i == n - 1 || pts[i + 1].du > pts[i].du)) right.push_back(i);
     }
     std::reverse(left.begin(), left.end());  // outward from the point
     int a_max = -1, b_min = n;  // last point at du <= 0, first at du >= 0 (the point itself is at 0)
     for (int i = 0; i < n; ++i) {
-        if (pts[i].du <= kEps) a_max = i;
-        if (pts[i].du >= -kEps && b_min == n) b_min = i;
+        if (pts[i].du <= 0) a_max = i;
+        if (pts[i].du >= 0 && b_min == n) b_min = i;
     }
     // Each end's group of points at the same du: [gbeg[i], gend[i]].
     std::vector<int> gbeg(n), gend(n);

@@ -42,7 +42,7 @@ std::optional<Column> connector_to(const Candidate& b, const Active& a, double t
     double prev = c.z0;
     for (double z : layers) {
         double shift = dist * (z - prev) / (c.z1 - c.z0);
-        if (shift > max_lean_per_layer(z - prev, s) + 1e-9) return std::nullopt;
+        if (shift > max_lean_per_layer(z - prev, s) + 1e-6) return std::nullopt;
         prev = z;
         if (!m.disc_clear) continue;
         double x, y;
