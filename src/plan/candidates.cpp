@@ -8,6 +8,7 @@
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
+#include <boost/iterator/function_output_iterator.hpp>
 
 namespace scaffold::plan {
 
@@ -51,25 +52,38 @@ std::vector<double> ModelView::tops_between(double z_lo, double z_hi, double lay
     return out;
 }
 
+// Buffers of evaluate(), kept between calls so a search allocates once.
+struct BridgeSearch::Scratch {
+    struct Near {
+        double du, adv, t, w;  // along, |across|, highest bar that carries it, across + its z
+        int id;
+    };
+    std::vector<Near> pts;
+    std::vector<int> hits, left, right, reach, gbeg, gend, count, by_t;
+    std::vector<double> heights, wl, wr, ws;
+};
+
 struct BridgeSearch::Index {
     using Point = bg::model::point<double, 2, bg::cs::cartesian>;
     using Box = bg::model::box<Point>;
     using Value = std::pair<Point, int>;
     bgi::rtree<Value, bgi::rstar<16>> tree;
 
+    // Ids in the box, in the tree's order: callers must not depend on it.
+    void in_box(double x0, double y0, double x1, double y1, std::vector<int>& ids) const {
+        ids.clear();
+        tree.query(bgi::intersects(Box(Point(x0, y0), Point(x1, y1))),
+                   boost::make_function_output_iterator([&](const Value& v) { ids.push_back(v.second); }));
+    }
     std::vector<int> in_box(double x0, double y0, double x1, double y1) const {
-        std::vector<Value> hits;
-        tree.query(bgi::intersects(Box(Point(x0, y0), Point(x1, y1))), std::back_inserter(hits));
         std::vector<int> ids;
-        ids.reserve(hits.size());
-        for (const auto& h : hits) ids.push_back(h.second);
-        // In the tree's order: callers must not depend on it.
+        in_box(x0, y0, x1, y1, ids);
         return ids;
     }
 };
 
 BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings)
-    : model_(model), s_(settings), index_(std::make_shared<Index>()) {
+    : model_(model), s_(settings), index_(std::make_shared<Index>()), scratch_(std::make_shared<Scratch>()) {
     reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
 }
 
@@ -158,12 +172,12 @@ void BridgeSearch::evaluate(int seed) {
     const double hx = L * std::abs(c) + O * std::abs(sn), hy = L * std::abs(sn) + O * std::abs(c);
     const double lean_per_mm = max_lean_per_layer(s_.layer_height, s_) / s_.layer_height;
 
-    struct Near {
-        double du, adv, t, w;  // along, |across|, highest bar that carries it, across + its z
-        int id;
-    };
-    std::vector<Near> pts;
-    for (int p : index_->in_box(q.x - hx, q.y - hy, q.x + hx, q.y + hy)) {
+    using Near = Scratch::Near;
+    Scratch& sc = *scratch_;
+    std::vector<Near>& pts = sc.pts;
+    pts.clear();
+    index_->in_box(q.x - hx, q.y - hy, q.x + hx, q.y + hy, sc.hits);
+    for (int p : sc.hits) {
         const Active& a = points_[p];
         double du = a.x * c + a.y * sn - uq, adv = std::abs(-a.x * sn + a.y * c - vq);
         if (std::abs(du) > L + 1e-6 || adv > O + 1e-6) continue;
@@ -180,7 +194,9 @@ void BridgeSearch::evaluate(int seed) {
     // Ends: a on the left (du <= 0, first of its equal-du group), b on the
     // right (du >= 0, last of its group), so [a..b] is exactly the span.
     // Exact comparisons: the point itself is at du = 0 exactly.
-    std::vector<int> left, right;
+    std::vector<int>&left = sc.left, &right = sc.right;
+    left.clear();
+    right.clear();
     for (int i = 0; i < n; ++i) {
         if (pts[i].du <= 0 && (i == 0 || pts[i - 1].du < pts[i].du)) left.push_back(i);
         if (pts[i].du >= 0 && (i == n - 1 || pts[i + 1].du > pts[i].du)) right.push_back(i);
@@ -191,13 +207,23 @@ void BridgeSearch::evaluate(int seed) {
         if (pts[i].du <= 0) a_max = i;
         if (pts[i].du >= 0 && b_min == n) b_min = i;
     }
+    // reach[a]: the last point a span from a can end at (30 mm on).
+    std::vector<int>& reach = sc.reach;
+    reach.resize(n);
+    for (int i = 0, j = 0; i < n; ++i) {
+        while (j + 1 < n && pts[j + 1].du - pts[i].du <= L + kEps) ++j;
+        reach[i] = j;
+    }
     // Each end's group of points at the same du: [gbeg[i], gend[i]].
-    std::vector<int> gbeg(n), gend(n);
+    std::vector<int>&gbeg = sc.gbeg, &gend = sc.gend;
+    gbeg.resize(n);
+    gend.resize(n);
     for (int i = 0; i < n; ++i) gbeg[i] = i > 0 && pts[i - 1].du == pts[i].du ? gbeg[i - 1] : i;
     for (int i = n - 1; i >= 0; --i) gend[i] = i < n - 1 && pts[i + 1].du == pts[i].du ? gend[i + 1] : i;
 
     // Candidate heights: where each point stops being carried, snapped to a layer top.
-    std::vector<double> heights;
+    std::vector<double>& heights = sc.heights;
+    heights.clear();
     for (const Near& p : pts) {
         double z = model_.snap_down(p.t);
         if (z > kEps) heights.push_back(z);
@@ -208,8 +234,11 @@ void BridgeSearch::evaluate(int seed) {
 
     Candidate best;
     bool has = false;
-    std::vector<int> count(n + 1);
-    std::vector<double> wl(n), wr(n);
+    std::vector<int>& count = sc.count;
+    count.assign(n + 1, 0);
+    std::vector<double>&wl = sc.wl, &wr = sc.wr;
+    wl.resize(n);
+    wr.resize(n);
     // Carried count and l_max of span [a..b] at height z, scanned directly.
     auto span_at = [&](int a, int b, double z, int& kk, double& wmax) {
         kk = 0;
@@ -248,10 +277,12 @@ void BridgeSearch::evaluate(int seed) {
 
     // Points by the highest bar that carries them, to grow the carried set
     // as the height goes down.
-    std::vector<int> by_t(n);
+    std::vector<int>& by_t = sc.by_t;
+    by_t.resize(n);
     for (int i = 0; i < n; ++i) by_t[i] = i;
     std::stable_sort(by_t.begin(), by_t.end(), [&](int a, int b) { return pts[a].t > pts[b].t; });
-    std::vector<double> ws;  // w of the points carried at the current height, ascending
+    std::vector<double>& ws = sc.ws;  // w of the points carried at the current height, ascending
+    ws.clear();
     std::size_t next = 0;
     for (double z : heights) {
         while (next < by_t.size() && pts[by_t[next]].t >= z - kEps) {
@@ -301,7 +332,7 @@ void BridgeSearch::evaluate(int seed) {
         };
         for (std::size_t ia = 0; ia < left.size(); ++ia) {
             const int a = left[ia];
-            const int k_all = count[n] - count[a];
+            const int k_all = count[reach[a] + 1] - count[a];  // the most a span from a can carry
             if (k_all < 3) continue;
             if (has && cap(3, k_all, wl[a], std::max(s_.bridge_min_length, -pts[a].du)) <= best.score) continue;
             const int a_in = ia > 0 && count[gend[a] + 1] == count[a] ? left[ia - 1] : -1;

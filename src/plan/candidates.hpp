@@ -93,6 +93,8 @@ struct Candidate {
 class BridgeSearch {
 public:
     BridgeSearch(const ModelView& model, const Settings& settings);
+    BridgeSearch(const BridgeSearch&) = delete;  // the rtree and buffers are its own
+    BridgeSearch& operator=(const BridgeSearch&) = delete;
 
     int add(const Active& a);   // returns the point's id
     void remove(int id);
@@ -137,6 +139,8 @@ private:
     long long evaluations_ = 0;
     struct Index;                   // the rtree over alive points
     std::shared_ptr<Index> index_;
+    struct Scratch;                 // evaluate()'s buffers
+    std::shared_ptr<Scratch> scratch_;
 };
 
 }  // namespace scaffold::plan

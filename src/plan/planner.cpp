@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <numbers>
+#include <tuple>
 #include <utility>
 
 #include "plan/pillars.hpp"
