@@ -220,6 +220,23 @@ TEST(PlannerModel, NoBridgeThroughAWall) {
     EXPECT_EQ(holders(walled, xyz.size()), std::vector<int>(xyz.size(), 1));
 }
 
+TEST(PlannerModel, NoBridgeThroughAWallOfTheRealObstacles) {
+    // The same rows, the wall now drawn into the layers (1 mm wide at x = 20, up to z 30).
+    auto st = empty_stack(32);
+    for (auto& l : st.layers)
+        if (l.z <= 30 + 1e-9) l.segments.push_back({20, -5, 20, 60, 1.0f, gcode::Role::Perimeter, 0});
+    Settings s;
+    plan::Obstacles obs(st, s);
+    std::vector<Xyz> xyz{{5, 20, 20}, {10, 20, 20}, {15, 20, 20}, {25, 20, 20}, {30, 20, 20}, {35, 20, 20}};
+    auto pts = points_of(xyz);
+    for (auto& p : pts.points) p.z = st.layers[p.layer].z - 0.2;
+    for (const auto& sc : {plan::plan_scaffold(pts, obs, s), plan::plan_scaffold(pts, st, obs, s)}) {
+        EXPECT_EQ(sc.bridges.size(), 2u);
+        for (const auto& b : sc.bridges) EXPECT_FALSE(crosses_x(b, 20)) << "bridge from x " << b.x0 << " to " << b.x1;
+        EXPECT_EQ(holders(sc, xyz.size()), std::vector<int>(xyz.size(), 1));
+    }
+}
+
 TEST(PlannerModel, PillarStandsOnTheModelBelow) {
     Settings s;
     auto sc = plan::plan_scaffold(points_of({{20, 5, 40}, {60, 5, 40}}), wall_at_20(), s);
