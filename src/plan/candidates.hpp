@@ -87,9 +87,9 @@ struct Candidate {
 // it recomputes only the O(D K) seeds whose window holds one of them:
 // O(D K^4) per step, at most N steps, O(D N K^4 + N log N) in all: linear in
 // N at a fixed density, steeply growing with the density. Measured
-// (tools/bench_plan.cpp): 0.3-0.6 ms per point from 100 to 10k points at
-// 1000 points per 200 x 200 mm; 25 ms per point for 10k points crowded into
-// 200 x 200 mm (K ~ 150).
+// (tools/bench_plan.cpp, no model): 0.11, 0.21, 0.27 ms per point for 100,
+// 1k, 10k points at 1000 points per 200 x 200 mm; 7.6 ms per point for 10k
+// points crowded into 200 x 200 mm (K ~ 150).
 class BridgeSearch {
 public:
     BridgeSearch(const ModelView& model, const Settings& settings);
