@@ -1,5 +1,7 @@
 #include "layers/raster.hpp"
 
+#include "gcode/error.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -308,6 +310,13 @@ BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
 
 BitGrid make_grid(const LayerStack& stack, double cell, double margin) {
     const Bounds& b = stack.bounds;
+    // A print a metre across (an arc of huge radius, a stray coordinate)
+    // would need gigabytes per raster: refuse it instead.
+    double cells = (b.max_x - b.min_x + 2 * margin) / cell * ((b.max_y - b.min_y + 2 * margin) / cell);
+    if (!(cells <= kMaxGridCells))
+        throw Error("the print spans " + std::to_string(static_cast<long>(b.max_x - b.min_x)) + " x " +
+                    std::to_string(static_cast<long>(b.max_y - b.min_y)) +
+                    " mm: too large to rasterize at this --resolution; check for stray coordinates");
     return BitGrid(b.min_x - margin, b.min_y - margin, b.max_x + margin, b.max_y + margin, cell);
 }
 

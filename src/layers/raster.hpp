@@ -69,7 +69,11 @@ private:
     std::vector<std::uint64_t> words_;
 };
 
+// Largest raster make_grid builds: 1 m x 1 m at 0.1 mm (12.5 MB a grid).
+inline constexpr double kMaxGridCells = 1e8;
+
 // The grid for a stack: its bounds padded by `margin` mm on every side.
+// Throws scaffold::Error beyond kMaxGridCells.
 BitGrid make_grid(const LayerStack& stack, double cell, double margin);
 // Draws every segment of the layer.
 void draw_layer(BitGrid& grid, const Layer& layer);
