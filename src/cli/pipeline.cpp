@@ -3,7 +3,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <numbers>
 #include <vector>
 
@@ -83,11 +82,6 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
     }
 }
 
-void write_text(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out || !(out << text) || !out.flush()) throw Error(path, 0, "cannot write this file");
-}
-
 }  // namespace
 
 void run(const Request& req, spdlog::logger& log) {
@@ -130,7 +124,7 @@ void run(const Request& req, spdlog::logger& log) {
     const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())
-        write_text(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
+        gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
     splice::SpliceResult spliced = splice::splice(program, stack, paths, settings);
     time.lap("splice");
 
@@ -188,7 +182,7 @@ void run(const Request& req, spdlog::logger& log) {
         for (std::size_t i = 0; i < time.stages.size(); ++i)
             j += (i ? ", \"" : "\"") + time.stages[i].first + "\": " + fixed(time.stages[i].second, 4);
         j += "}\n}\n";
-        write_text(it->second, j);
+        gcode::write_text_file(it->second, j);
     }
 }
 

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 
 #include "gcode/error.hpp"
 
@@ -104,6 +105,11 @@ void write_output(const std::string& path, const Program& program, std::vector<E
         ::unlink(tmp.c_str());
         throw Error(path, 0, std::string("cannot replace the output file: ") + std::strerror(err));
     }
+}
+
+void write_text_file(const std::string& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out || !(out << text) || !out.flush()) throw Error(path, 0, "cannot write this file");
 }
 
 }  // namespace scaffold::gcode

@@ -28,4 +28,8 @@ bool write_edited(std::FILE* out, const Program& program, std::vector<Edit> edit
 // Writes to `path` atomically ("-" writes to stdout). Throws scaffold::Error.
 void write_output(const std::string& path, const Program& program, std::vector<Edit> edits);
 
+// A side file (report, picture, dump): written directly, not atomically.
+// Throws scaffold::Error if it cannot be written.
+void write_text_file(const std::string& path, const std::string& text);
+
 }  // namespace scaffold::gcode

@@ -2,9 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "gcode/error.hpp"
+#include "gcode/writer.hpp"
 
 namespace scaffold::overhang {
 
@@ -14,11 +14,6 @@ std::string f(double v, int d = 3) {
     char b[48];
     std::snprintf(b, sizeof b, "%.*f", d, v);
     return b;
-}
-
-void save(const std::string& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out || !(out << text) || !out.flush()) throw Error(path, 0, "cannot write this file");
 }
 
 
@@ -32,7 +27,7 @@ void write_points_json(const std::string& path, const SupportPoints& points) {
         o += "{\"x\":" + f(p.x) + ",\"y\":" + f(p.y) + ",\"z\":" + f(p.z) + ",\"layer\":" + std::to_string(p.layer) + "}";
     }
     o += "],\n\"overhang_area_mm2\":" + f(points.overhang_area_mm2) + "}\n";
-    save(path, o);
+    gcode::write_text_file(path, o);
 }
 
 void write_layer_svgs(const std::string& dir, const Overhangs& overhangs, const SupportPoints& points,
@@ -66,7 +61,7 @@ void write_layer_svgs(const std::string& dir, const Overhangs& overhangs, const 
         o += "</svg>\n";
         char name[32];
         std::snprintf(name, sizeof name, "/layer-%04d.svg", ol.layer);
-        save(dir + name, o);
+        gcode::write_text_file(dir + name, o);
     }
 }
 
