@@ -153,28 +153,6 @@ std::vector<std::vector<Cell>> regions(const layers::BitGrid& g, double join) {
     return out;
 }
 
-// Draws the stretches of the segment whose centre line lies outside `held`.
-void draw_unheld_stretches(const layers::Segment& sg, const layers::BitGrid& held, double step, layers::BitGrid& out) {
-    double len = std::hypot(sg.x1 - sg.x0, sg.y1 - sg.y0);
-    int steps = std::max(1, static_cast<int>(std::ceil(len / step)));
-    int run = -1;
-    for (int k = 0; k <= steps + 1; ++k) {
-        bool unheld = false;
-        if (k <= steps) {
-            double t = static_cast<double>(k) / steps;
-            double x = sg.x0 + (sg.x1 - sg.x0) * t, y = sg.y0 + (sg.y1 - sg.y0) * t;
-            unheld = !held.get(held.col(x), held.row(y));
-        }
-        if (unheld && run < 0) run = k;
-        if (!unheld && run >= 0) {
-            double ta = static_cast<double>(run) / steps, tb = static_cast<double>(k - 1) / steps;
-            out.draw_segment(sg.x0 + (sg.x1 - sg.x0) * ta, sg.y0 + (sg.y1 - sg.y0) * ta, sg.x0 + (sg.x1 - sg.x0) * tb,
-                             sg.y0 + (sg.y1 - sg.y0) * tb, sg.width);
-            run = -1;
-        }
-    }
-}
-
 // Consecutive moves of one extrusion path turning by less than this make
 // one straight piece, as in METHOD.md's rule (b) and scaffold-check.
 constexpr double kStraightDeg = 10;
@@ -204,12 +182,18 @@ void draw_samples(const std::vector<Sample>& p, std::size_t a, std::size_t b, la
     for (std::size_t k = a + 1; k <= b; ++k) out.draw_segment(p[k - 1].x, p[k - 1].y, p[k].x, p[k].y, p[k].width);
 }
 
-// Slicer-marked bridge segments [first, last] (one straight piece of one
-// path): an unheld run of the centre line held on both sides and no longer
-// than the bridge limit is spanned; a dangling or too long run is overhang.
-void bridge_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
-                  const layers::BitGrid& held, double step, double max_bridge, layers::BitGrid& over,
-                  layers::BitGrid& spanned, std::vector<Sample>& p) {
+// A bead's unheld end this short is held (METHOD.md's rule (b)).
+constexpr double kDanglingEnd = 1.0;
+// Any bead, marked bridge or not, spans an unheld run this short between
+// two held parts: slicers leave such runs unmarked at a slope's edge.
+constexpr double kShortSpan = 2.0;
+
+// Segments [first, last] (one straight piece of one path): an unheld run of
+// the centre line held on both sides and no longer than `max_span` is
+// spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
+void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                    const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
+                    layers::BitGrid& spanned, std::vector<Sample>& p) {
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -225,13 +209,72 @@ void bridge_piece(const std::vector<layers::Segment>& segs, std::size_t first, s
         if (p[i].held) { ++i; continue; }
         std::size_t j = i;
         while (j < p.size() && !p[j].held) ++j;
-        bool bounded = i > 0 && j < p.size();
-        if (bounded && p[j].s - p[i - 1].s <= max_bridge)
+        bool start_held = i > 0, end_held = j < p.size();
+        if (start_held && end_held && p[j].s - p[i - 1].s <= max_span)
             draw_samples(p, i - 1, j, spanned);
+        else if (start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd)
+            draw_samples(p, start_held ? i - 1 : i, start_held ? j - 1 : j, spanned);
         else
             draw_samples(p, i, j - 1, over);
         i = j;
     }
+}
+
+// One connected overhang region of one layer.
+struct Region {
+    int layer = 0;
+    double z = 0;
+    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // cell bounds
+    std::vector<Cell> cells;
+};
+
+// Regions on layers at most this many nominal layer heights apart, whose
+// cells come within kJoin of each other, continue one another.
+constexpr double kChainLayers = 2.5;
+
+int find_root(std::vector<int>& parent, int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+}
+
+// Area of the chain each region belongs to: regions are chained when one
+// continues the other from a layer just below (union-find over pairs that
+// pass a bounding-box test, then a cell-distance test).
+std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::BitGrid& g, double layer_height) {
+    const int n = static_cast<int>(rs.size());
+    std::vector<int> parent(n);
+    for (int k = 0; k < n; ++k) parent[k] = k;
+    const int pad = static_cast<int>(std::ceil(kJoin / g.cell()));
+    const double window = kChainLayers * layer_height + 1e-6;
+    for (int k = 0; k < n; ++k) {
+        const Region& a = rs[k];
+        layers::BitGrid near;  // a's cells grown by kJoin, built on first use
+        for (int q = k - 1; q >= 0; --q) {
+            const Region& b = rs[q];
+            if (b.layer == a.layer) continue;
+            if (a.z - b.z > window || b.z >= a.z) {
+                if (a.layer - b.layer > 64) break;  // far back in the file: no more candidates
+                continue;
+            }
+            if (b.i1 < a.i0 - pad || b.i0 > a.i1 + pad || b.j1 < a.j0 - pad || b.j0 > a.j1 + pad) continue;
+            if (find_root(parent, k) == find_root(parent, q)) continue;
+            if (near.width() == 0) {
+                near = layers::BitGrid(g.origin_x() + (a.i0 - pad) * g.cell(), g.origin_y() + (a.j0 - pad) * g.cell(),
+                                       g.origin_x() + (a.i1 + pad + 1) * g.cell(), g.origin_y() + (a.j1 + pad + 1) * g.cell(),
+                                       g.cell());
+                for (const Cell& c : a.cells) near.set(c.i - a.i0 + pad, c.j - a.j0 + pad);
+                near = near.dilated(kJoin);
+            }
+            bool touches = std::any_of(b.cells.begin(), b.cells.end(),
+                                       [&](const Cell& c) { return near.get(c.i - a.i0 + pad, c.j - a.j0 + pad); });
+            if (touches) parent[find_root(parent, k)] = find_root(parent, q);
+        }
+    }
+    std::vector<double> sum(n, 0.0);
+    for (int k = 0; k < n; ++k) sum[find_root(parent, k)] += static_cast<double>(rs[k].cells.size()) * g.cell_area();
+    std::vector<double> out(n);
+    for (int k = 0; k < n; ++k) out[k] = sum[find_root(parent, k)];
+    return out;
 }
 
 }  // namespace
@@ -249,6 +292,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     bool below_has_skirt = false;
     int below_index = -1;
     std::vector<Sample> samples;
+    std::vector<Region> found;
     for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
@@ -272,41 +316,58 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         spanned.clear();
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
-            if (gcode::is_bridge(segs[k].role)) {
-                // The span is the whole straight piece, not one move: slicers
-                // split bridge lines and overhang perimeters into many moves.
-                std::size_t last = k;
-                while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) &&
-                       continues_straight(segs[k], segs[last], segs[last + 1]))
-                    ++last;
-                bridge_piece(segs, k, last, held, s.resolution, s.max_bridge, over, spanned, samples);
-                k = last;
-                continue;
-            }
             // A bead is held where its centre line is held (METHOD.md's rule,
             // the one scaffold-check applies): only the unheld stretches of
-            // the centre line make overhang, drawn at the bead's width.
-            draw_unheld_stretches(segs[k], held, s.resolution, over);
+            // the centre line make overhang, drawn at the bead's width. The
+            // span is the whole straight piece, not one move: slicers split
+            // bridge lines and overhang perimeters into many moves.
+            const bool bridge = gcode::is_bridge(segs[k].role);
+            std::size_t last = k;
+            while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
+                   continues_straight(segs[k], segs[last], segs[last + 1]))
+                ++last;
+            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, spanned, samples);
+            k = last;
         }
         over.subtract(spanned);
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
         if (over.any()) over.subtract((below_has_skirt ? rim : below).enclosed(over));
         if (!over.any()) continue;
-        // Drop specks: regions smaller than the minimum area.
-        double cell_area = over.cell_area();
-        OverhangLayer ol;
-        ol.layer = n;
-        ol.cells = proto;
-        for (const auto& comp : regions(over, kJoin)) {
-            if (static_cast<double>(comp.size()) * cell_area < s.min_overhang_area) continue;
-            for (const Cell& c : comp) ol.cells.set(c.i, c.j);
+        for (auto& comp : regions(over, kJoin)) {
+            Region r;
+            r.layer = n;
+            r.z = layer.z;
+            r.i0 = r.i1 = comp.front().i;
+            r.j0 = r.j1 = comp.front().j;
+            for (const Cell& c : comp) {
+                r.i0 = std::min(r.i0, c.i); r.i1 = std::max(r.i1, c.i);
+                r.j0 = std::min(r.j0, c.j); r.j1 = std::max(r.j1, c.j);
+            }
+            r.cells = std::move(comp);
+            found.push_back(std::move(r));
         }
-        std::size_t count = ol.cells.count();
-        if (count == 0) continue;
-        ol.area_mm2 = static_cast<double>(count) * cell_area;
-        out.area_mm2 += ol.area_mm2;
-        out.layers.push_back(std::move(ol));
+    }
+    // Drop specks: overhangs smaller than the minimum area, judged over the
+    // whole chain of regions that continue one another from layer to layer,
+    // not per layer. A steep slope overhangs by a sliver on every layer;
+    // each sliver is tiny but together they are a real overhang.
+    const std::vector<double> chain_area = chain_areas(found, proto, s.layer_height);
+    const double cell_area = proto.cell_area();
+    for (std::size_t k = 0; k < found.size(); ++k) {
+        if (chain_area[k] < s.min_overhang_area) continue;
+        const Region& r = found[k];
+        if (out.layers.empty() || out.layers.back().layer != r.layer) {
+            OverhangLayer ol;
+            ol.layer = r.layer;
+            ol.cells = proto;
+            out.layers.push_back(std::move(ol));
+        }
+        OverhangLayer& ol = out.layers.back();
+        for (const Cell& c : r.cells) ol.cells.set(c.i, c.j);
+        const double a = static_cast<double>(r.cells.size()) * cell_area;
+        ol.area_mm2 += a;
+        out.area_mm2 += a;
     }
     return out;
 }
@@ -319,8 +380,22 @@ SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack&
         const layers::Layer& layer = stack.layers[ol.layer];
         double z = layer.z - layer.height;
         std::vector<SupportPoint> pts;
-        for (const auto& comp : regions(g, kJoin)) {
+        // Largest regions first; a region's cells already within reach of an
+        // earlier region's points need no point of their own (a sliver next
+        // to a large overhang is held by the large one's points).
+        auto comps = regions(g, kJoin);
+        std::stable_sort(comps.begin(), comps.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+        layers::BitGrid covered = comps.size() > 1 ? layers::BitGrid(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
+                                                                     g.origin_y() + g.height() * g.cell(), g.cell())
+                                                   : layers::BitGrid();
+        for (auto& comp : comps) {
+            if (!pts.empty()) {
+                std::erase_if(comp, [&](const Cell& c) { return covered.get(c.i, c.j); });
+                if (comp.empty()) continue;
+            }
             std::vector<SupportPoint> some = cover_region(g, comp, s.point_spacing, s.point_radius, z, ol.layer);
+            if (covered.width() > 0)
+                for (const SupportPoint& p : some) covered.draw_disc(p.x, p.y, s.point_radius - 1e-6);
             pts.insert(pts.end(), some.begin(), some.end());
         }
         std::stable_sort(pts.begin(), pts.end(), [](const SupportPoint& a, const SupportPoint& b) {
