@@ -229,7 +229,9 @@ struct Region {
 };
 
 // Regions on layers at most this many nominal layer heights apart, whose
-// cells come within kJoin of each other, continue one another.
+// cells come within kChainJoin of each other, continue one another (the
+// edge of a slope may move along by a millimetre or two a layer).
+constexpr double kChainJoin = 1.5;
 constexpr double kChainLayers = 2.5;
 
 int find_root(std::vector<int>& parent, int k) {
@@ -244,11 +246,11 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
     const int n = static_cast<int>(rs.size());
     std::vector<int> parent(n);
     for (int k = 0; k < n; ++k) parent[k] = k;
-    const int pad = static_cast<int>(std::ceil(kJoin / g.cell()));
+    const int pad = static_cast<int>(std::ceil(kChainJoin / g.cell()));
     const double window = kChainLayers * layer_height + 1e-6;
     for (int k = 0; k < n; ++k) {
         const Region& a = rs[k];
-        layers::BitGrid near;  // a's cells grown by kJoin, built on first use
+        layers::BitGrid near;  // a's cells grown by kChainJoin, built on first use
         for (int q = k - 1; q >= 0; --q) {
             const Region& b = rs[q];
             if (b.layer == a.layer) continue;
@@ -263,7 +265,7 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
                                        g.origin_x() + (a.i1 + pad + 1) * g.cell(), g.origin_y() + (a.j1 + pad + 1) * g.cell(),
                                        g.cell());
                 for (const Cell& c : a.cells) near.set(c.i - a.i0 + pad, c.j - a.j0 + pad);
-                near = near.dilated(kJoin);
+                near = near.dilated(kChainJoin);
             }
             bool touches = std::any_of(b.cells.begin(), b.cells.end(),
                                        [&](const Cell& c) { return near.get(c.i - a.i0 + pad, c.j - a.j0 + pad); });
@@ -271,9 +273,13 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
         }
     }
     std::vector<double> sum(n, 0.0);
-    for (int k = 0; k < n; ++k) sum[find_root(parent, k)] += static_cast<double>(rs[k].cells.size()) * g.cell_area();
+    std::vector<int> members(n, 0);
+    for (int k = 0; k < n; ++k) {
+        sum[find_root(parent, k)] += static_cast<double>(rs[k].cells.size()) * g.cell_area();
+        members[find_root(parent, k)]++;
+    }
     std::vector<double> out(n);
-    for (int k = 0; k < n; ++k) out[k] = sum[find_root(parent, k)];
+    for (int k = 0; k < n; ++k) out[k] = members[find_root(parent, k)] >= 2 ? 1e9 : sum[find_root(parent, k)];
     return out;
 }
 
