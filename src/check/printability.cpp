@@ -367,7 +367,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         // except contact tips (support that ends within two layers).
         if (here.support.any()) {
             layers::BitGrid coll = here.support;
-            coll &= here.model.dilated(std::max(0.0, o.xy_gap - o.resolution));
+            // Against the filled footprint: support inside the part (in a
+            // hole of its sparse infill) can never be removed.
+            coll &= here.model.filled().dilated(std::max(0.0, o.xy_gap - o.resolution));
             if (coll.any()) {
                 int above = 0;
                 for (int k = L + 1; k < static_cast<int>(stack.layers.size()) && above < 2; ++k)

@@ -14,8 +14,18 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
         z_.push_back(layer.z);
         h_.push_back(layer.height);
         below_.push_back(layer.below);
-        layers::BitGrid g = proto;
-        layers::draw_layer(g, layer);
+        // The model's filled footprint: a hole between sparse infill lines is
+        // inside the part, no room for a pillar. A skirt or brim loop encloses
+        // nothing (filled, it would wall off the whole bed around the part).
+        layers::BitGrid g = proto, skirt = proto;
+        bool has_skirt = false;
+        for (const layers::Segment& sg : layer.segments) {
+            bool is_skirt = sg.role == gcode::Role::Skirt;
+            has_skirt = has_skirt || is_skirt;
+            (is_skirt ? skirt : g).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        }
+        g = g.filled();
+        if (has_skirt) g |= skirt;
         model_.push_back(std::move(g));
     }
     grown_.resize(model_.size());

@@ -38,6 +38,10 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
     return true;
 }
 
+// Radius of the thin pillar tried where the normal one finds no room, as a
+// share of the pillar radius.
+constexpr double kThinFactor = 0.6;
+
 // Farthest a pillar may wander sideways while stepping around the model.
 constexpr double kMaxWander = 6.0;
 
@@ -180,21 +184,34 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     // The point itself first, then rings around it, in a fixed order.
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
     static constexpr std::array<double, 7> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
-    for (double d : kRings) {
-        if (top == Top::Bridge && d > 0) break;  // a bridge end stays where the bridge is
-        int n = d == 0 ? 1 : (d < 1.75 ? 8 : 16);
-        for (int k = 0; k < n; ++k) {
-            double a = k * 2 * std::numbers::pi / n;
-            Column c = proto;
-            c.x0 = c.x1 = x + d * std::cos(a);
-            c.y0 = c.y1 = y + d * std::sin(a);
-            if (!descend(c, top_layer, stack, obs, s, path)) continue;
-            if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
-            std::vector<Column> chain = columns_of(c, path);
-            if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
-            fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
-            return chain;
+    auto search = [&](const Column& shape) -> std::optional<std::vector<Column>> {
+        for (double d : kRings) {
+            if (top == Top::Bridge && d > 0) break;  // a bridge end stays where the bridge is
+            int n = d == 0 ? 1 : (d < 1.75 ? 8 : 16);
+            for (int k = 0; k < n; ++k) {
+                double a = k * 2 * std::numbers::pi / n;
+                Column c = shape;
+                c.x0 = c.x1 = x + d * std::cos(a);
+                c.y0 = c.y1 = y + d * std::sin(a);
+                if (!descend(c, top_layer, stack, obs, s, path)) continue;
+                if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
+                // Thin pillars only where they stay within the slenderness limit.
+                if (c.radius < proto.radius && c.z1 - c.z0 > 2 * c.radius * s.slenderness) continue;
+                std::vector<Column> chain = columns_of(c, path);
+                if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
+                fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
+                return chain;
+            }
         }
+        return std::nullopt;
+    };
+    if (auto chain = search(proto)) return chain;
+    // A short, thin pillar lands on a small or sloping top of the model (an
+    // ear over a head) and fits narrow gaps where the normal one does not.
+    if (top == Top::Contact && !s.buildplate_only) {
+        Column thin = proto;
+        thin.radius = std::max(s.tip_radius, s.pillar_radius * kThinFactor);
+        if (thin.radius < proto.radius) return search(thin);
     }
     return std::nullopt;
 }

@@ -95,6 +95,22 @@ TEST(Check, PillarThroughTheModelCollides) {
     EXPECT_GT(r.collision_mm2, 1.0);
 }
 
+TEST(Check, PillarInsideTheSparseInfillCollides) {
+    // A 20 mm box of walls only (a hollow, like sparse infill's holes): a
+    // pillar in the middle keeps clear of every bead but is inside the part.
+    SynthGcode g;
+    for (int l = 1; l <= 20; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.rect_outline(100, 100, 120, 120);
+        g.type("Support material");
+        g.rect_outline(109, 109, 111, 111);
+    }
+    auto r = run(g);
+    EXPECT_FALSE(r.ok());
+    EXPECT_GT(r.collision_mm2, 10.0);
+}
+
 TEST(Check, EJumpFails) {
     SynthGcode g = cube(5);
     g.raw("G1 E50 F2400");  // 45+ mm of filament pushed without motion
