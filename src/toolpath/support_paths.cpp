@@ -24,6 +24,20 @@ namespace {
 
 constexpr double kZEps = 1e-6;
 
+// A loop whose centre line stays within this many bead widths of one
+// already printed on the layer retraces it.
+constexpr double kRetrace = 0.5;
+
+struct Square {
+    double x, y, half;
+    bool overlaps(const Square& o) const { return std::abs(x - o.x) < half + o.half && std::abs(y - o.y) < half + o.half; }
+    bool contains(const Square& o) const { return std::abs(x - o.x) + o.half <= half && std::abs(y - o.y) + o.half <= half; }
+};
+
+struct Ring {
+    double x, y, rc;  // centre and centre-line radius
+};
+
 // Outline plus zigzag fill of a square of side `size` around (cx, cy).
 Path raft(double cx, double cy, double size, double width, double speed) {
     Path p;
@@ -78,14 +92,35 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         double speed = first_layer ? s.first_layer_speed_mm_s : s.support_speed_mm_s;
         LayerPaths lp;
         lp.layer = l;
+        // What this layer already prints, so nothing is extruded twice: a
+        // loop that (nearly) retraces one already printed is left out (the
+        // column above rests on that one), a raft overlapping an earlier raft
+        // too, and on the first layer the raft replaces the loop on it.
+        std::vector<Square> rafts;
+        std::vector<Ring> rings;
         for (const plan::Column& c : scaffold.columns) {
             if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             // A column whose base is on the bed starts on the first layer.
             double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;
             double cx = c.x0 + (c.x1 - c.x0) * t, cy = c.y0 + (c.y1 - c.y0) * t;
-            if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0)
-                lp.paths.push_back(raft(cx, cy, c.raft_size, w, speed));
             double r = plan::column_radius_at(c, z, s);
+            if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0) {
+                Square sq{cx, cy, c.raft_size / 2};
+                bool overlaps = std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.overlaps(sq); });
+                if (!overlaps) {
+                    lp.paths.push_back(raft(cx, cy, c.raft_size, w, speed));
+                    rafts.push_back(sq);
+                }
+            }
+            // A loop wholly on a raft of this layer is printed by the raft.
+            if (first_layer && std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.contains({cx, cy, r}); }))
+                continue;
+            const double rc = r - w / 2;
+            if (std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
+                    return std::hypot(o.x - cx, o.y - cy) + std::abs(o.rc - rc) <= kRetrace * w;
+                }))
+                continue;
+            rings.push_back({cx, cy, rc});
             Path p;
             p.kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
                      : (c.x0 != c.x1 || c.y0 != c.y1) ? PathKind::Connector : PathKind::Pillar;
