@@ -2,22 +2,27 @@
 // The reader's product: the file's bytes, its lines, and every motion as a
 // plain Move (arcs flattened), plus the slicer config found in the file.
 // Later stages never re-read the text; the writer copies it byte for byte.
+// Sizes matter here: a 500 MB file has some 15 million lines and moves.
 #include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "gcode/role.hpp"
+#include "gcode/text.hpp"
 
 namespace scaffold::gcode {
 
 enum class Dialect : std::uint8_t { Unknown, PrusaSlicer, SuperSlicer, OrcaSlicer, Slic3r, Cura };
 const char* dialect_name(Dialect d);
 
+// 8 bytes: files up to 1 TB, lines up to 16 MB (the reader refuses longer).
 struct Line {
-    std::uint64_t offset = 0;  // of the first byte in Program::text
-    std::uint32_t length = 0;  // without the line ending
+    std::uint64_t offset : 40 = 0;  // of the first byte in Program::text
+    std::uint64_t length : 24 = 0;  // without the line ending
 };
+inline constexpr std::uint64_t kMaxLineLength = (std::uint64_t{1} << 24) - 1;
+inline constexpr std::uint64_t kMaxFileSize = (std::uint64_t{1} << 40) - 1;
 
 enum class MoveKind : std::uint8_t {
     Travel,     // XY and/or Z without extrusion
@@ -49,7 +54,7 @@ struct LayerHint {
 
 struct Program {
     std::string path;  // for messages; "-" for stdin
-    std::string text;  // the whole file, untouched
+    Text text;         // the whole file, untouched (mapped when it is a regular file)
     std::vector<Line> lines;
     std::vector<Move> moves;
     std::vector<LayerHint> layer_hints;
@@ -60,7 +65,7 @@ struct Program {
     bool saw_arcs = false;
 
     std::string_view line_text(std::size_t i) const {
-        return std::string_view(text).substr(lines[i].offset, lines[i].length);
+        return std::string_view(text.data() + lines[i].offset, lines[i].length);
     }
 };
 

@@ -2,9 +2,6 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <iostream>
-#include <iterator>
 #include <sstream>
 
 #include "gcode/error.hpp"
@@ -152,53 +149,53 @@ struct Parser {
 
 }  // namespace
 
-Program parse(std::string text, std::string path) {
+namespace {
+
+// Lines and moves in one pass. On a mapped file the bytes behind the pass
+// are released as it goes, so the text is never resident as a whole.
+Program parse_text(Text text, std::string path) {
     Program p;
     p.path = std::move(path);
     p.text = std::move(text);
-    const std::string& t = p.text;
+    const Text& t = p.text;
     if (t.size() >= 4 && std::memcmp(t.data(), "GCDE", 4) == 0)
         throw Error(p.path, 0, "binary G-code (.bgcode) is not supported; export plain text G-code from the slicer");
     if (t.empty()) throw Error(p.path, 0, "the file is empty");
-    if (t.size() > 0xFFFFFFFFull * 64) throw Error(p.path, 0, "the file is too large");
-    // Lines first (one memchr pass), then the state machine over them.
+    if (t.size() > kMaxFileSize) throw Error(p.path, 0, "the file is too large (over 1 TB)");
     std::size_t approx = t.size() / 24 + 16;
     p.lines.reserve(approx);
     p.moves.reserve(approx);
+    constexpr std::size_t kWindow = std::size_t{16} << 20;
+    std::size_t released = 0;
+    Parser parser{p, {}, {}, Role::Unknown, 0, {}};
     std::size_t pos = 0;
     while (pos < t.size()) {
         const void* nl = std::memchr(t.data() + pos, '\n', t.size() - pos);
         std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - t.data()) : t.size();
         std::size_t len = end - pos;
         if (len > 0 && t[end - 1] == '\r') --len;
-        if (len > 0xFFFFFFFFu) throw Error(p.path, p.lines.size() + 1, "line too long");
-        p.lines.push_back({pos, static_cast<std::uint32_t>(len)});
+        if (p.lines.size() >= 0xFFFFFFF0u) throw Error(p.path, 0, "too many lines");
+        auto i = static_cast<std::uint32_t>(p.lines.size());
+        if (len > kMaxLineLength) throw Error(p.path, i + 1, "line too long (over 16 MB)");
+        p.lines.push_back({pos & kMaxFileSize, len & kMaxLineLength});  // both checked above
+        parser.line(i, p.line_text(i));
         pos = end + 1;
+        if (pos - released >= 2 * kWindow) {
+            t.release(released, pos - kWindow);
+            released = pos - kWindow;
+        }
     }
-    if (p.lines.size() > 0xFFFFFFF0u) throw Error(p.path, 0, "too many lines");
-    Parser parser{p, {}, {}, Role::Unknown, 0, {}};
-    for (std::uint32_t i = 0; i < p.lines.size(); ++i) parser.line(i, p.line_text(i));
+    t.release(released, t.size());
     if (!parser.cura_settings.empty()) parse_cura_settings(parser.cura_settings, p.config);
     return p;
 }
 
+}  // namespace
+
+Program parse(std::string text, std::string path) { return parse_text(Text(std::move(text)), std::move(path)); }
+
 Program read_file(const std::string& path) {
-    std::string text;
-    if (path == "-") {
-        std::ostringstream ss;
-        ss << std::cin.rdbuf();
-        text = ss.str();
-    } else {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw Error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
-        in.seekg(0, std::ios::end);
-        std::streamoff size = in.tellg();
-        if (size < 0) throw Error(path, 0, "cannot determine the file size");
-        text.resize(static_cast<std::size_t>(size));
-        in.seekg(0);
-        if (size > 0 && !in.read(text.data(), size)) throw Error(path, 0, "read failed");
-    }
-    return parse(std::move(text), path == "-" ? "<stdin>" : path);
+    return parse_text(Text::load(path), path == "-" ? "<stdin>" : path);
 }
 
 }  // namespace scaffold::gcode

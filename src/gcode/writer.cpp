@@ -35,6 +35,20 @@ bool put_block(std::FILE* out, const std::string& text, bool crlf) {
     return true;
 }
 
+// Copies text[from, to) in pieces, releasing each piece of a mapped input
+// once written, so writing a huge file keeps only a piece of it resident.
+bool copy_text(std::FILE* out, const Text& text, std::uint64_t from, std::uint64_t to) {
+    constexpr std::uint64_t kPiece = std::uint64_t{8} << 20;
+    std::string_view all(text);
+    while (from < to) {
+        std::uint64_t n = std::min(kPiece, to - from);
+        if (!put(out, all.substr(from, n))) return false;
+        text.release(from, from + n);
+        from += n;
+    }
+    return true;
+}
+
 }  // namespace
 
 bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
@@ -48,7 +62,7 @@ bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
         std::uint32_t line = std::min<std::uint32_t>(e.line, static_cast<std::uint32_t>(p.lines.size()));
         std::uint64_t at = line < p.lines.size() ? p.lines[line].offset : text.size();
         if (at > copied) {
-            if (!put(out, text.substr(copied, at - copied))) return false;
+            if (!copy_text(out, p.text, copied, at)) return false;
             copied = at;
         }
         // A last line without a newline gets one before anything follows it.
@@ -62,7 +76,7 @@ bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
             copied = p.lines[line].offset + p.lines[line].length;
         }
     }
-    if (copied < text.size() && !put(out, text.substr(copied))) return false;
+    if (copied < text.size() && !copy_text(out, p.text, copied, text.size())) return false;
     return true;
 }
 
