@@ -16,10 +16,21 @@ BitGrid::BitGrid(double min_x, double min_y, double max_x, double max_y, double 
     words_.assign(static_cast<std::size_t>(wpr_) * ny_, 0);
 }
 
-int BitGrid::col(double x) const { return static_cast<int>(std::floor((x - ox_) / cell_)); }
-int BitGrid::row(double y) const { return static_cast<int>(std::floor((y - oy_) / cell_)); }
+CellBox BitGrid::clipped(CellBox b) const {
+    if (b.empty()) return b;
+    return {std::max(b.i0, 0), std::max(b.j0, 0), std::min(b.i1, nx_ - 1), std::min(b.j1, ny_ - 1)};
+}
 
 void BitGrid::clear() { std::fill(words_.begin(), words_.end(), 0); }
+
+void BitGrid::clear(const CellBox& box) {
+    CellBox b = clipped(box);
+    if (b.empty()) return;
+    for (int j = b.j0; j <= b.j1; ++j) {
+        std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
+        std::fill(row + (b.i0 >> 6), row + (b.i1 >> 6) + 1, 0);
+    }
+}
 
 void BitGrid::set_row_span(int j, int i0, int i1) {
     if (j < 0 || j >= ny_) return;
@@ -123,6 +134,26 @@ void BitGrid::subtract(const BitGrid& o) {
     for (std::size_t k = 0; k < words_.size(); ++k) words_[k] &= ~o.words_[k];
 }
 
+void BitGrid::subtract(const BitGrid& o, const CellBox& box) {
+    CellBox b = clipped(box);
+    if (b.empty()) return;
+    for (int j = b.j0; j <= b.j1; ++j) {
+        std::size_t k0 = static_cast<std::size_t>(j) * wpr_;
+        for (int w = b.i0 >> 6; w <= b.i1 >> 6; ++w) words_[k0 + w] &= ~o.words_[k0 + w];
+    }
+}
+
+bool BitGrid::any(const CellBox& box) const {
+    CellBox b = clipped(box);
+    if (b.empty()) return false;
+    for (int j = b.j0; j <= b.j1; ++j) {
+        const std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
+        for (int w = b.i0 >> 6; w <= b.i1 >> 6; ++w)
+            if (row[w]) return true;
+    }
+    return false;
+}
+
 std::size_t BitGrid::count() const {
     std::size_t n = 0;
     for (auto w : words_) n += static_cast<std::size_t>(std::popcount(w));
@@ -154,42 +185,73 @@ void or_shift_down(const std::uint64_t* in, std::uint64_t* out, int words, int s
     }
 }
 
-// Horizontal dilation of one row by k cells, in O(log k) shifted ORs.
-void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, int words, int k) {
-    std::copy(in, in + words, out);
-    int e = 0;
+// Horizontal dilation in place of a row already dilated by e cells, to k
+// cells, in O(log k) shifted ORs.
+void dilate_row(std::uint64_t* row, std::uint64_t* tmp, int words, int e, int k) {
     while (e < k) {
         int s = std::min(e + 1, k - e);
-        std::copy(out, out + words, tmp);
-        or_shift_up(tmp, out, words, s);
-        or_shift_down(tmp, out, words, s);
+        std::copy(row, row + words, tmp);
+        or_shift_up(tmp, row, words, s);
+        or_shift_down(tmp, row, words, s);
         e += s;
     }
 }
 
 }  // namespace
 
-BitGrid BitGrid::dilated(double r) const {
-    BitGrid out = *this;
+CellBox BitGrid::dilate_into(BitGrid& out, double r, const CellBox& box) const {
+    const CellBox b = clipped(box);
+    if (b.empty()) return b;
     double rc = r / cell_;
-    int R = static_cast<int>(std::floor(rc + 1e-9));
-    if (R <= 0) return out;
-    std::vector<int> half(R + 1);
-    for (int d = 0; d <= R; ++d) half[d] = static_cast<int>(std::floor(std::sqrt(std::max(0.0, rc * rc - d * d)) + 1e-9));
-    std::vector<std::uint64_t> row(wpr_), tmp(wpr_);
-    std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
-    for (int j = 0; j < ny_; ++j) {
-        const std::uint64_t* src = &words_[static_cast<std::size_t>(j) * wpr_];
-        if (std::all_of(src, src + wpr_, [](std::uint64_t w) { return w == 0; })) continue;
+    int R = std::max(0, static_cast<int>(std::floor(rc + 1e-9)));
+    // half[d]: the horizontal reach at row offset d, non-increasing in d.
+    std::vector<int> half(R + 1, 0);
+    if (R > 0)
+        for (int d = 0; d <= R; ++d)
+            half[d] = static_cast<int>(std::floor(std::sqrt(std::max(0.0, rc * rc - d * d)) + 1e-9));
+    // Only the words within reach of the box; bits shifted past them are
+    // beyond every source's reach.
+    const int oa = std::max(0, (b.i0 - R) >> 6), ob = std::min(wpr_ - 1, (b.i1 + R) >> 6), n = ob - oa + 1;
+    // One row buffer per offset d, built from the next larger d's (smaller
+    // reach) by dilating further.
+    std::vector<std::uint64_t> rows(static_cast<std::size_t>(R + 1) * n), tmp(n);
+    const std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
+    for (int j = b.j0; j <= b.j1; ++j) {
+        const std::uint64_t* src = &words_[static_cast<std::size_t>(j) * wpr_ + oa];
+        if (std::all_of(src, src + n, [](std::uint64_t w) { return w == 0; })) continue;
+        for (int d = R; d >= 0; --d) {
+            std::uint64_t* row = &rows[static_cast<std::size_t>(d) * n];
+            if (d == R) std::copy(src, src + n, row);
+            else std::copy(row + n, row + 2 * n, row);
+            dilate_row(row, tmp.data(), n, d == R ? 0 : half[d + 1], half[d]);
+        }
         for (int d = -R; d <= R; ++d) {
             int jj = j + d;
             if (jj < 0 || jj >= ny_) continue;
-            dilate_row(src, row.data(), tmp.data(), wpr_, half[std::abs(d)]);
-            std::uint64_t* dst = &out.words_[static_cast<std::size_t>(jj) * wpr_];
-            for (int w = 0; w < wpr_; ++w) dst[w] |= row[w];
-            dst[wpr_ - 1] &= tail;
+            const std::uint64_t* row = &rows[static_cast<std::size_t>(std::abs(d)) * n];
+            std::uint64_t* dst = &out.words_[static_cast<std::size_t>(jj) * wpr_ + oa];
+            for (int w = 0; w < n; ++w) dst[w] |= row[w];
+            if (ob == wpr_ - 1) dst[n - 1] &= tail;
         }
     }
+    return clipped(b.grown(R));
+}
+
+BitGrid BitGrid::dilated(double r) const {
+    // The box of the set cells, to whole words.
+    CellBox box;
+    for (int j = 0; j < ny_; ++j) {
+        const std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
+        for (int w = 0; w < wpr_; ++w) {
+            if (!row[w]) continue;
+            if (box.empty()) box = {w * 64, j, w * 64 + 63, j};
+            box.i0 = std::min(box.i0, w * 64);
+            box.i1 = std::max(box.i1, w * 64 + 63);
+            box.j1 = j;
+        }
+    }
+    BitGrid out = *this;
+    dilate_into(out, r, box);
     return out;
 }
 
@@ -336,6 +398,25 @@ std::string svg_cell_runs(const BitGrid& g, const char* fill) {
 
 void draw_layer(BitGrid& grid, const Layer& layer) {
     for (const Segment& s : layer.segments) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width);
+}
+
+CellBox layer_box(const BitGrid& grid, const Layer& layer) {
+    if (layer.segments.empty()) return {};
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const Segment& s : layer.segments) {
+        double r = std::max(s.width * 0.5, grid.cell() * 0.5);
+        x0 = std::min(x0, std::min<double>(s.x0, s.x1) - r);
+        y0 = std::min(y0, std::min<double>(s.y0, s.y1) - r);
+        x1 = std::max(x1, std::max<double>(s.x0, s.x1) + r);
+        y1 = std::max(y1, std::max<double>(s.y0, s.y1) + r);
+    }
+    // A cell of slack either side for the rounding of interpolated points.
+    auto to_cell = [&](double v, double o) { return std::clamp((v - o) / grid.cell(), -1e9, 1e9); };
+    CellBox b{static_cast<int>(std::floor(to_cell(x0, grid.origin_x()))) - 2,
+              static_cast<int>(std::floor(to_cell(y0, grid.origin_y()))) - 2,
+              static_cast<int>(std::floor(to_cell(x1, grid.origin_x()))) + 2,
+              static_cast<int>(std::floor(to_cell(y1, grid.origin_y()))) + 2};
+    return grid.clipped(b);
 }
 
 }  // namespace scaffold::layers

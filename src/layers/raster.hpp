@@ -2,6 +2,7 @@
 // A bit grid over the print's XY bounds; one bit per cell. Layers are drawn
 // into it as thick lines of their real width. Memory follows the print's
 // bounding box, not the bed.
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -9,6 +10,14 @@
 #include "layers/layer_stack.hpp"
 
 namespace scaffold::layers {
+
+// A rectangle of cells, bounds inclusive; empty when i1 < i0 or j1 < j0.
+// Per-layer work is confined to the box a layer can touch, not the grid.
+struct CellBox {
+    int i0 = 0, j0 = 0, i1 = -1, j1 = -1;
+    bool empty() const { return i1 < i0 || j1 < j0; }
+    CellBox grown(int n) const { return empty() ? *this : CellBox{i0 - n, j0 - n, i1 + n, j1 + n}; }
+};
 
 class BitGrid {
 public:
@@ -25,8 +34,9 @@ public:
     // Centre of cell (i, j) in mm.
     double cx(int i) const { return ox_ + (i + 0.5) * cell_; }
     double cy(int j) const { return oy_ + (j + 0.5) * cell_; }
-    int col(double x) const;  // may be outside [0, width)
-    int row(double y) const;
+    int col(double x) const { return static_cast<int>(std::floor((x - ox_) / cell_)); }  // may be outside [0, width)
+    int row(double y) const { return static_cast<int>(std::floor((y - oy_) / cell_)); }
+    CellBox clipped(CellBox b) const;  // b inside the grid
 
     bool get(int i, int j) const {
         if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return false;
@@ -37,6 +47,7 @@ public:
         words_[word_index(i, j)] |= std::uint64_t{1} << (i & 63);
     }
     void clear();
+    void clear(const CellBox& box);  // whole words: the grid must be empty outside box
     void set_row_span(int j, int i0, int i1);  // cells i0..i1 of row j (inclusive, clipped)
     const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
@@ -49,8 +60,12 @@ public:
     BitGrid& operator|=(const BitGrid& o);
     BitGrid& operator&=(const BitGrid& o);
     void subtract(const BitGrid& o);  // this &= ~o
+    void subtract(const BitGrid& o, const CellBox& box);  // within box (whole words)
     // Every cell within r (mm) of a set cell becomes set.
     BitGrid dilated(double r) const;
+    // out |= this dilated by r, for a grid empty outside `box`; returns the
+    // (clipped) box of out that can have changed. Same shape required.
+    CellBox dilate_into(BitGrid& out, double r, const CellBox& box) const;
     // Cells enclosed by set cells (not reachable from the border) become set.
     BitGrid filled() const;
     // The cells of `seeds` (same shape) that lie in holes enclosed by set
@@ -58,6 +73,7 @@ public:
     BitGrid enclosed(const BitGrid& seeds) const;
     std::size_t count() const;
     bool any() const;
+    bool any(const CellBox& box) const;  // within box (whole words)
 
     int words_per_row() const { return wpr_; }
     const std::vector<std::uint64_t>& words() const { return words_; }
@@ -77,6 +93,9 @@ inline constexpr double kMaxGridCells = 1e8;
 BitGrid make_grid(const LayerStack& stack, double cell, double margin);
 // Draws every segment of the layer.
 void draw_layer(BitGrid& grid, const Layer& layer);
+// The cells draw_layer (or drawing any part of its segments at their
+// width) can set, clipped to the grid.
+CellBox layer_box(const BitGrid& grid, const Layer& layer);
 
 // The set cells as SVG: one <rect> per horizontal run, in cell units with
 // y pointing up (row 0 at the bottom), inside a <g fill="...">.

@@ -294,7 +294,9 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     // that can enclose a hole: a skirt or brim loop holds what lies on it but
     // encloses nothing, as in the validator), and this layer's overhang and
     // held marked bridges.
-    layers::BitGrid below = proto, rim = proto, over = proto, spanned = proto;
+    layers::BitGrid below = proto, rim = proto, held = proto, over = proto, spanned = proto;
+    // What each scratch grid may hold: work stays inside the layers' boxes.
+    layers::CellBox below_box, held_box, over_box;
     bool below_has_skirt = false;
     int below_index = -1;
     std::vector<Sample> samples;
@@ -304,12 +306,13 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         if (layer.on_bed || layer.below < 0) continue;
         if (layer.below != below_index) {
             const layers::Layer& under = stack.layers[layer.below];
-            below.clear();
+            below.clear(below_box);
+            if (below_has_skirt) rim.clear(below_box);
+            below_box = layers::layer_box(below, under);
             layers::draw_layer(below, under);
             below_has_skirt = std::any_of(under.segments.begin(), under.segments.end(),
                                           [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
             if (below_has_skirt) {
-                rim.clear();
                 for (const layers::Segment& sg : under.segments)
                     if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
             }
@@ -317,9 +320,11 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         }
         // Half a cell inside the validator's reach (which adds half a cell), so
         // raster alignment never decides a borderline bead.
-        const layers::BitGrid held = below.dilated(std::max(0.0, layer.height * slope - s.resolution / 2));
-        over.clear();
-        spanned.clear();
+        held.clear(held_box);
+        held_box = below.dilate_into(held, std::max(0.0, layer.height * slope - s.resolution / 2), below_box);
+        over.clear(over_box);
+        spanned.clear(over_box);
+        over_box = layers::layer_box(over, layer);
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
             // A bead is held where its centre line is held (METHOD.md's rule,
@@ -335,10 +340,11 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, spanned, samples);
             k = last;
         }
-        over.subtract(spanned);
+        over.subtract(spanned, over_box);
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
-        if (over.any()) over.subtract((below_has_skirt ? rim : below).enclosed(over));
+        if (!over.any(over_box)) continue;
+        over.subtract((below_has_skirt ? rim : below).enclosed(over));
         if (!over.any()) continue;
         for (auto& comp : regions(over, kJoin)) {
             Region r;
