@@ -175,6 +175,14 @@ void run(const Request& req, spdlog::logger& log) {
         j += "  \"pillars\": " + std::to_string(pillars) + ",\n";
         j += "  \"bridges\": " + std::to_string(scaffold.bridges.size()) + ",\n";
         j += "  \"dropped_points\": " + std::to_string(scaffold.dropped_points.size()) + ",\n";
+        // Where they are, so a user can look (or add support by hand there).
+        j += "  \"dropped\": [";
+        for (std::size_t i = 0; i < scaffold.dropped_points.size(); ++i) {
+            const auto& p = points.points[scaffold.dropped_points[i]];
+            j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}, \"layer\": {}}}", i ? ", " : "", p.x, p.y, p.z,
+                             p.layer);
+        }
+        j += "],\n";
         j += "  \"support_filament_mm\": " + fixed(spliced.filament_mm, 2) + ",\n";
         j += "  \"model_filament_mm\": " + fixed(model_mm, 2) + ",\n";
         j += "  \"layers_touched\": " + std::to_string(spliced.layers_touched) + ",\n";

@@ -191,9 +191,11 @@ constexpr double kShortSpan = 2.0;
 // Segments [first, last] (one straight piece of one path): an unheld run of
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
+// A marked bridge's spans are drawn into `spanned` (they hold the beads they
+// overlap); a plain bead's only keep it from being overhang itself.
 void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
-                    layers::BitGrid& spanned, std::vector<Sample>& p) {
+                    layers::BitGrid* spanned, std::vector<Sample>& p) {
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -210,12 +212,13 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         std::size_t j = i;
         while (j < p.size() && !p[j].held) ++j;
         bool start_held = i > 0, end_held = j < p.size();
-        if (start_held && end_held && p[j].s - p[i - 1].s <= max_span)
-            draw_samples(p, i - 1, j, spanned);
-        else if (start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd)
-            draw_samples(p, start_held ? i - 1 : i, start_held ? j - 1 : j, spanned);
-        else
+        if (start_held && end_held && p[j].s - p[i - 1].s <= max_span) {
+            if (spanned) draw_samples(p, i - 1, j, *spanned);
+        } else if (start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd) {
+            if (spanned) draw_samples(p, start_held ? i - 1 : i, start_held ? j - 1 : j, *spanned);
+        } else {
             draw_samples(p, i, j - 1, over);
+        }
         i = j;
     }
 }
@@ -337,7 +340,8 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
-            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, spanned, samples);
+            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over,
+                           bridge ? &spanned : nullptr, samples);
             k = last;
         }
         over.subtract(spanned, over_box);

@@ -10,6 +10,8 @@
 #include <optional>
 #include <set>
 #include <tuple>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -120,11 +122,20 @@ private:
         Candidate best;
     };
     using Key = std::tuple<long, long, long, long, long>;
+    struct KeyHash {
+        std::size_t operator()(const Key& k) const {
+            std::size_t h = 0;
+            auto mix = [&h](long v) { h = (h ^ std::hash<long>{}(v)) * 0x100000001b3ULL; };
+            mix(std::get<0>(k)); mix(std::get<1>(k)); mix(std::get<2>(k)); mix(std::get<3>(k)); mix(std::get<4>(k));
+            return h;
+        }
+    };
     static Key key_of(double x0, double y0, double x1, double y1, double z);
 
     void mark_around(double x, double y);
     void evaluate(int seed);
     bool bar_clear(double x0, double y0, double x1, double y1, double z);
+    bool end_stands(double x, double y, double z);
 
     const ModelView& model_;
     const Settings& s_;
@@ -134,8 +145,10 @@ private:
     std::vector<Seed> seeds_;       // id * D + direction
     std::vector<int> dirty_;        // seeds to recompute before the next best()
     std::set<std::pair<double, int>> ranked_;  // (-score, seed): best first, ties by seed
-    std::set<Key> rejected_;
-    std::map<Key, bool> bar_cache_;
+    // Looked up only, never iterated: hashing keeps the plan deterministic.
+    std::unordered_set<Key, KeyHash> rejected_;
+    std::unordered_map<Key, bool, KeyHash> bar_cache_;
+    std::unordered_map<Key, bool, KeyHash> end_cache_;
     long long evaluations_ = 0;
     struct Index;                   // the rtree over alive points
     std::shared_ptr<Index> index_;

@@ -90,7 +90,7 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         return it->second;
     };
     // Bounded work where the model is in the way everywhere.
-    long rejects_left = 80 + 2 * static_cast<long>(start.size());
+    long rejects_left = 20000 + 400 * static_cast<long>(start.size());
     while (auto c = search.best()) {
         const double len = std::hypot(c->x1 - c->x0, c->y1 - c->y0);
         std::vector<Column> connectors;
