@@ -191,11 +191,11 @@ constexpr double kShortSpan = 2.0;
 // Segments [first, last] (one straight piece of one path): an unheld run of
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
-// A marked bridge's spans are drawn into `spanned` (they hold the beads they
-// overlap); a plain bead's only keep it from being overhang itself.
+// Each piece is judged on its own, as the validator does: a held span keeps
+// its own bead from being overhang, not the beads it overlaps.
 void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
-                    layers::BitGrid* spanned, std::vector<Sample>& p) {
+                    std::vector<Sample>& p) {
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -212,13 +212,9 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         std::size_t j = i;
         while (j < p.size() && !p[j].held) ++j;
         bool start_held = i > 0, end_held = j < p.size();
-        if (start_held && end_held && p[j].s - p[i - 1].s <= max_span) {
-            if (spanned) draw_samples(p, i - 1, j, *spanned);
-        } else if (start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd) {
-            if (spanned) draw_samples(p, start_held ? i - 1 : i, start_held ? j - 1 : j, *spanned);
-        } else {
-            draw_samples(p, i, j - 1, over);
-        }
+        bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span;
+        bool short_end = start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
+        if (!spanned && !short_end) draw_samples(p, i, j - 1, over);
         i = j;
     }
 }
@@ -295,9 +291,8 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     // Scratch grids for the whole stack, cleared per layer rather than
     // reallocated: the layer beneath (all its material, and the part of it
     // that can enclose a hole: a skirt or brim loop holds what lies on it but
-    // encloses nothing, as in the validator), and this layer's overhang and
-    // held marked bridges.
-    layers::BitGrid below = proto, rim = proto, held = proto, over = proto, spanned = proto;
+    // encloses nothing, as in the validator), and this layer's overhang.
+    layers::BitGrid below = proto, rim = proto, held = proto, over = proto;
     // What each scratch grid may hold: work stays inside the layers' boxes.
     layers::CellBox below_box, held_box, over_box;
     bool below_has_skirt = false;
@@ -326,7 +321,6 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         held.clear(held_box);
         held_box = below.dilate_into(held, std::max(0.0, layer.height * slope - s.resolution / 2), below_box);
         over.clear(over_box);
-        spanned.clear(over_box);
         over_box = layers::layer_box(over, layer);
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
@@ -340,11 +334,9 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
-            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over,
-                           bridge ? &spanned : nullptr, samples);
+            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
             k = last;
         }
-        over.subtract(spanned, over_box);
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
         if (!over.any(over_box)) continue;

@@ -26,7 +26,7 @@ constexpr double kZEps = 1e-6;
 
 // A loop whose centre line stays within this many bead widths of one
 // already printed on the layer retraces it.
-constexpr double kRetrace = 0.5;
+constexpr double kRetrace = 0.2;
 
 struct Square {
     double x, y, half;
