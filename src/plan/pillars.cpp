@@ -7,6 +7,13 @@
 
 namespace scaffold::plan {
 
+LoopShape loop_shape(double r, double width) {
+    LoopShape shape;
+    shape.centre_radius = std::max(r - width / 2, width * 0.25);
+    shape.sides = std::clamp(static_cast<int>(std::ceil(2 * std::numbers::pi * shape.centre_radius / 0.6)), 8, 48);
+    return shape;
+}
+
 double column_radius_at(const Column& c, double z, const Settings& s) {
     double r = c.radius;
     if (c.contact_z > 0 && s.tip_length > 0) {
@@ -38,12 +45,30 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
     return true;
 }
 
+// Whether the bottom loop of a column standing on the model's layer `layer`
+// rests on it: every side of the loop has at least one held vertex (model
+// within `reach`), so an unheld part is a dangling end shorter than a side
+// (METHOD.md's rule (b)): a loop may land on a sloping top, overhanging it
+// by less than a side, not only on a flat top that holds all of it.
+bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, double width, double reach) {
+    const LoopShape shape = loop_shape(r, width);
+    bool first_held = false, prev_held = false;
+    for (int k = 0; k < shape.sides; ++k) {
+        double a = 2 * std::numbers::pi * k / shape.sides;
+        bool held = !obs.disc_clear(layer, x + shape.centre_radius * std::cos(a), y + shape.centre_radius * std::sin(a), reach);
+        if (k == 0) first_held = held;
+        else if (!held && !prev_held) return false;
+        prev_held = held;
+    }
+    return first_held || prev_held;
+}
+
 // Radius of the thin pillar tried where the normal one finds no room, as a
 // share of the pillar radius.
 constexpr double kThinFactor = 0.6;
 
 // Farthest a pillar may wander sideways while stepping around the model.
-constexpr double kMaxWander = 6.0;
+constexpr double kMaxWander = 15.0;
 
 struct Step {
     double x, y, z;
@@ -90,8 +115,8 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         // Stand on the model only where it holds the whole bottom loop (every
         // point of it within the self-supporting reach); model beside the
         // column, or under only part of it, is a collision: try elsewhere.
-        if (first || !loop_held(obs, l, cx, cy, std::max(r - s.support_width / 2, 0.0),
-                                stack.layers[top_layer].height * slope * 0.8))
+        if (first || !loop_rests(obs, l, cx, cy, column_radius_at(proto, path.back().z, s), s.support_width,
+                                 stack.layers[top_layer].height * slope * 0.8))
             return false;
         proto.base = Base::Model;
         proto.z0 = layer.z;

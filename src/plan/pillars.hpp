@@ -27,6 +27,16 @@ Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::Layer
 // Radius of a column at height z (tip taper, foot flare, base radius).
 double column_radius_at(const Column& c, double z, const Settings& settings);
 
+// The printed loop of a column of outer radius r with beads of width w: a
+// regular polygon of `sides` vertices, the first at angle 0, on a circle of
+// radius `centre_radius` (the bead's centre line). The toolpaths print it
+// so; the planner checks where it rests with the same vertices.
+struct LoopShape {
+    double centre_radius = 0;
+    int sides = 8;
+};
+LoopShape loop_shape(double r, double width);
+
 // Centre of a column at height z (linear between its ends).
 inline void column_centre_at(const Column& c, double z, double& x, double& y) {
     double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;

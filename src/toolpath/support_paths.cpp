@@ -9,8 +9,9 @@
 namespace scaffold::toolpath {
 
 std::vector<Point> loop(double cx, double cy, double r, double width) {
-    double rc = std::max(r - width / 2, width * 0.25);
-    int sides = std::clamp(static_cast<int>(std::ceil(2 * std::numbers::pi * rc / 0.6)), 8, 48);
+    const plan::LoopShape shape = plan::loop_shape(r, width);
+    const double rc = shape.centre_radius;
+    const int sides = shape.sides;
     std::vector<Point> pts;
     pts.reserve(sides + 1);
     for (int k = 0; k <= sides; ++k) {
