@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -80,6 +81,7 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
         if (repl.empty() || (s.find(',') != std::string::npos && s.find(',') > at)) continue;  // multi-extruder lists: leave
         edits.push_back({i, true, repl});
     }
+    p.text.release(0, p.text.size());  // the scan touched every page; the writer reads them back piece by piece
 }
 
 }  // namespace
@@ -106,7 +108,17 @@ void run(const Request& req, spdlog::logger& log) {
     bool big = program.text.size() > 10'000'000;
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
-    const layers::LayerStack stack = layers::build_layers(program, settings);
+    layers::LayerStack stack = layers::build_layers(program, settings);
+    double model_mm = 0;
+    for (const auto& m : program.moves)
+        if (m.kind == gcode::MoveKind::Extrude) model_mm += m.e;
+    // Print-time change, by the validator's estimate; the written file is
+    // read back for it, so only when that is cheap.
+    bool estimate_time = req.output != "-" && program.text.size() < 50'000'000;
+    double time_before = estimate_time ? check::estimate_print_time(program) : 0;
+    // Nothing below reads the moves (the splice re-lexes the lines): free
+    // them, the largest part of a big file's memory.
+    std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
     const overhang::Overhangs overhangs = overhang::find_overhangs(stack, settings);
     const overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
@@ -116,21 +128,20 @@ void run(const Request& req, spdlog::logger& log) {
         overhang::write_layer_svgs(it->second, overhangs, points, stack, settings);
     if (big) log.info("{} support points; planning...", points.points.size());
 
-    const plan::Obstacles obstacles(stack, settings);
+    auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
     const plan::Scaffold scaffold = settings.method == Method::Pillars
-                                        ? plan::plan_pillars(points, stack, obstacles, settings)
-                                        : plan::plan_scaffold(points, stack, obstacles, settings);
+                                        ? plan::plan_pillars(points, stack, *obstacles, settings)
+                                        : plan::plan_scaffold(points, stack, *obstacles, settings);
     time.lap("plan");
-    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
+    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
+    obstacles.reset();  // one raster per layer: free before the text is read again
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())
         gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
+    for (layers::Layer& layer : stack.layers) std::vector<layers::Segment>().swap(layer.segments);  // drawn for the last time
     splice::SpliceResult spliced = splice::splice(program, stack, paths, settings);
     time.lap("splice");
 
-    double model_mm = 0;
-    for (const auto& m : program.moves)
-        if (m.kind == gcode::MoveKind::Extrude) model_mm += m.e;
     std::size_t pillars = 0;
     for (const auto& c : scaffold.columns) pillars += c.base == plan::Base::Bed || c.base == plan::Base::Model;
     std::string header = "; scaffold " SCAFFOLD_VERSION " (post-processed supports)\n";
@@ -148,11 +159,9 @@ void run(const Request& req, spdlog::logger& log) {
     gcode::write_output(req.output, program, std::move(edits));
     time.lap("write");
 
-    // Print-time change, by the validator's estimate; the written file is
-    // read back for it, so only when that is cheap.
     std::string time_change;
-    if (req.output != "-" && program.text.size() < 50'000'000) {
-        double before = check::estimate_print_time(program);
+    if (estimate_time) {
+        double before = time_before;
         double after = check::estimate_print_time(gcode::read_file(req.output));
         time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
                                   before > 0 ? 100 * (after - before) / before : 0.0);

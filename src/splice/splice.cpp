@@ -199,6 +199,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     std::vector<gcode::Move> scratch;
     std::string last_type;
     std::uint32_t line = 0;
+    std::uint64_t released = 0;  // text before this was lexed and released
     bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
     for (const toolpath::LayerPaths& lp : paths.layers) {
         const layers::Layer& layer = stack.layers[lp.layer];
@@ -214,6 +215,10 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
             scratch.clear();
             gcode::step(st, cmd, line, scratch);
         }
+        // A huge file stays resident only a layer at a time.
+        std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
+        program.text.release(released, upto);
+        released = upto;
         BlockWriter w(st, settings, layer, fw, last_type, program.dialect);
         gcode::Edit e;
         e.line = at;
