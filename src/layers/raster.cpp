@@ -9,7 +9,7 @@
 namespace scaffold::layers {
 
 BitGrid::BitGrid(double min_x, double min_y, double max_x, double max_y, double cell)
-    : ox_(min_x), oy_(min_y), cell_(cell) {
+    : ox_(min_x), oy_(min_y), cell_(cell), inv_cell_(1 / cell) {
     nx_ = std::max(1, static_cast<int>(std::ceil((max_x - min_x) / cell)));
     ny_ = std::max(1, static_cast<int>(std::ceil((max_y - min_y) / cell)));
     wpr_ = (nx_ + 63) / 64;
@@ -30,24 +30,6 @@ void BitGrid::clear(const CellBox& box) {
         std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
         std::fill(row + (b.i0 >> 6), row + (b.i1 >> 6) + 1, 0);
     }
-}
-
-void BitGrid::set_row_span(int j, int i0, int i1) {
-    if (j < 0 || j >= ny_) return;
-    i0 = std::max(i0, 0);
-    i1 = std::min(i1, nx_ - 1);
-    if (i0 > i1) return;
-    std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
-    int w0 = i0 >> 6, w1 = i1 >> 6;
-    std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63);
-    std::uint64_t hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
-    if (w0 == w1) {
-        row[w0] |= lo & hi;
-        return;
-    }
-    row[w0] |= lo;
-    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
-    row[w1] |= hi;
 }
 
 namespace {
@@ -109,11 +91,59 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     double r = std::max(width * 0.5, cell_ * 0.5);
     int j0 = std::max(0, row(std::min(y0, y1) - r));
     int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
+    // The fast ways multiply by reciprocals where capsule_row divides; a row
+    // whose outcome they cannot be sure of is redone the exact way, so the
+    // cells set are capsule_row's.
+    const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy, len = std::sqrt(len2);
+    const double rl = r * len, inv_dx = 1 / dx, inv_dy = 1 / dy;
+    const double sure_mm = kSureCells * cell_;
+    constexpr double kInf = 1e300;
+    // Rows more than r (and a margin far above rounding) from both ends'
+    // y, between them: no end disc reaches them and the band's ends do not
+    // bound them, so the span is the band across the line, whose cell
+    // bounds are linear in the row: v = a + j * k.
+    const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
+    const double k = dx * inv_dy, a = (x0 - ox_ + (oy_ + 0.5 * cell_ - y0) * k) * inv_cell_ - 0.5;
+    const double half_band = rl / std::abs(dy) * inv_cell_;
+    const bool linear = yhi - ylo > 2 * mid && std::abs(a) + half_band + std::abs(k) * (j1 + 1.0) < 1e7;
     for (int j = j0; j <= j1; ++j) {
-        Interval span = capsule_row(x0, y0, x1, y1, r, cy(j));
+        const double c = cy(j);
+        int i0 = 0, i1 = -1;
+        if (linear && c - ylo >= mid && yhi - c >= mid) {
+            double v = a + j * k;
+            if (sure_floor(v - half_band, i0) && sure_floor(v + half_band, i1)) {
+                set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+                continue;
+            }
+        }
+        Interval span = disc_row(x0, y0, r, c);
+        span.unite(disc_row(x1, y1, r, c));
+        bool sure = true;
+        if (len2 > 0) {
+            const double ry = c - y0;
+            bool band = true;
+            Interval perp{-kInf, kInf}, along{-kInf, kInf};
+            if (dy != 0) perp = sorted(x0 + (dx * ry - rl) * inv_dy, x0 + (dx * ry + rl) * inv_dy);
+            else if (std::abs(ry) > r) band = false;
+            if (dx != 0) along = sorted(x0 + (-ry * dy) * inv_dx, x0 + (len2 - ry * dy) * inv_dx);
+            else if (double t = ry * dy; t < 0 || t > len2) band = false;
+            if (band) {
+                Interval both = intersect(perp, along);
+                sure = std::abs(both.hi - both.lo) > sure_mm;
+                span.unite(both);
+            }
+        }
+        if (sure && !span.empty()) {
+            sure = sure_floor((span.lo - ox_) * inv_cell_ - 0.5, i0) && sure_floor((span.hi - ox_) * inv_cell_ - 0.5, i1);
+            ++i0;
+        }
+        if (!sure) {
+            span = capsule_row(x0, y0, x1, y1, r, c);
+            if (span.empty()) continue;
+            i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
+            i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
+        }
         if (span.empty()) continue;
-        int i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
-        int i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
         set_row_span(j, i0, i1);
     }
 }

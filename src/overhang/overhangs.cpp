@@ -204,7 +204,9 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         int n = std::max(1, static_cast<int>(std::ceil(len / step)));
         for (int i = p.empty() ? 0 : 1; i <= n; ++i) {
             double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-            p.push_back({x, y, s0 + len * t, sg.width, held.get(held.col(x), held.row(y))});
+            int ci, cj;
+            if (!held.sure_cell(x, y, ci, cj)) ci = held.col(x), cj = held.row(y);
+            p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj)});
         }
     }
     for (std::size_t i = 0; i < p.size();) {
