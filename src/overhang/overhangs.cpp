@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <numbers>
+#include <thread>
 
 namespace scaffold::overhang {
 
@@ -284,11 +286,10 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
     return out;
 }
 
-}  // namespace
-
-Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
-    Overhangs out;
-    const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
+// The overhang regions of layers [first, end), in layer order. Each layer's
+// depend on it and the layer beneath only, so ranges can run in parallel.
+void find_regions_in(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto, int first,
+                     int end, std::vector<Region>& found) {
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     // Scratch grids for the whole stack, cleared per layer rather than
     // reallocated: the layer beneath (all its material, and the part of it
@@ -300,8 +301,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     bool below_has_skirt = false;
     int below_index = -1;
     std::vector<Sample> samples;
-    std::vector<Region> found;
-    for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
+    for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
         if (layer.below != below_index) {
@@ -358,6 +358,58 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             found.push_back(std::move(r));
         }
     }
+}
+
+// Detection runs on at most this many threads.
+constexpr std::size_t kMaxThreads = 4;
+// Fewer segments a thread (the layers' and those beneath) cost more to
+// start than they save.
+constexpr std::size_t kMinSegmentsPerThread = 20000;
+
+// find_regions_in over the whole stack, in ranges of about equal work on
+// up to kMaxThreads threads, joined in layer order: the result does not
+// depend on the split.
+std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto) {
+    const int n_layers = static_cast<int>(stack.layers.size());
+    std::vector<std::size_t> work(n_layers + 1, 0);
+    for (int n = 0; n < n_layers; ++n) {
+        const layers::Layer& layer = stack.layers[n];
+        std::size_t w = layer.segments.size() + (layer.below >= 0 ? stack.layers[layer.below].segments.size() : 0);
+        work[n + 1] = work[n] + w;
+    }
+    const std::size_t threads = std::min({std::max<std::size_t>(1, std::thread::hardware_concurrency()), kMaxThreads,
+                                          std::max<std::size_t>(1, work[n_layers] / kMinSegmentsPerThread)});
+    std::vector<int> bounds{0};
+    for (std::size_t t = 1; t < threads; ++t)
+        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / threads) - work.begin()));
+    bounds.push_back(n_layers);
+    std::vector<std::vector<Region>> parts(threads);
+    std::vector<std::exception_ptr> errors(threads);
+    auto run = [&](std::size_t t) {
+        try {
+            find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
+        } catch (...) {
+            errors[t] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run, t);
+    run(0);
+    for (std::thread& th : pool) th.join();
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+    std::vector<Region> found = std::move(parts[0]);
+    for (std::size_t t = 1; t < threads; ++t)
+        for (Region& r : parts[t]) found.push_back(std::move(r));
+    return found;
+}
+
+}  // namespace
+
+Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
+    Overhangs out;
+    const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
+    const std::vector<Region> found = find_regions(stack, s, proto);
     // Drop specks: overhangs smaller than the minimum area, judged over the
     // whole chain of regions that continue one another from layer to layer,
     // not per layer. A steep slope overhangs by a sliver on every layer;
