@@ -190,6 +190,37 @@ constexpr double kDanglingEnd = 1.0;
 // two held parts: slicers leave such runs unmarked at a slope's edge.
 constexpr double kShortSpan = 2.0;
 
+// ceil(hypot(dx, dy) / step), at least 1: the samples of a segment after
+// its first. A square root instead of hypot, unless close to an integer.
+int sample_count(double dx, double dy, double step) {
+    double q = std::sqrt(dx * dx + dy * dy) / step, c = std::ceil(q);
+    if (c - q < 1e-9 * (c + 1) || q - (c - 1) < 1e-9 * (c + 1)) c = std::ceil(std::hypot(dx, dy) / step);
+    return std::max(1, static_cast<int>(c));
+}
+
+// Whether every centre-line sample straight_piece takes of segments
+// [first, last] is held (most pieces): found without storing the samples,
+// stepping by a multiplied increment, a sample near a cell border redone
+// the exact way.
+bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                      const layers::BitGrid& held, double step) {
+    for (std::size_t k = first; k <= last; ++k) {
+        const layers::Segment& sg = segs[k];
+        const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0;
+        const int n = sample_count(dx, dy, step);
+        const double x0 = sg.x0, y0 = sg.y0, ddx = dx / n, ddy = dy / n;
+        for (int i = k == first ? 0 : 1; i <= n; ++i) {
+            int ci, cj;
+            if (!held.sure_cell(x0 + i * ddx, y0 + i * ddy, ci, cj)) {
+                double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
+                ci = held.col(x), cj = held.row(y);
+            }
+            if (!held.get(ci, cj)) return false;
+        }
+    }
+    return true;
+}
+
 // Segments [first, last] (one straight piece of one path): an unheld run of
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
@@ -198,6 +229,7 @@ constexpr double kShortSpan = 2.0;
 void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
                     std::vector<Sample>& p) {
+    if (all_samples_held(segs, first, last, held, step)) return;  // nothing to draw
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
