@@ -215,14 +215,32 @@ void or_shift_down(const std::uint64_t* in, std::uint64_t* out, int words, int s
     }
 }
 
-// Horizontal dilation in place of a row already dilated by e cells, to k
-// cells, in O(log k) shifted ORs.
-void dilate_row(std::uint64_t* row, std::uint64_t* tmp, int words, int e, int k) {
+// One step of horizontal dilation by s cells (1 <= s < 64), out = in |
+// in shifted both ways; in and out may be the same row.
+void dilate_step(const std::uint64_t* in, std::uint64_t* out, int words, int s) {
+    std::uint64_t prev = 0;  // in[w - 1] before this step
+    for (int w = 0; w < words; ++w) {
+        const std::uint64_t cur = in[w], next = w + 1 < words ? in[w + 1] : 0;
+        out[w] = cur | cur << s | prev >> (64 - s) | cur >> s | next << (64 - s);
+        prev = cur;
+    }
+}
+
+// Horizontal dilation of `in` (already dilated by e cells) to k > e cells
+// into out, in O(log k) steps; tmp is scratch of `words` words.
+void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, int words, int e, int k) {
+    const std::uint64_t* from = in;
     while (e < k) {
         int s = std::min(e + 1, k - e);
-        std::copy(row, row + words, tmp);
-        or_shift_up(tmp, row, words, s);
-        or_shift_down(tmp, row, words, s);
+        if (s < 64) {
+            dilate_step(from, out, words, s);
+        } else {
+            std::copy(from, from + words, tmp);
+            std::copy(tmp, tmp + words, out);
+            or_shift_up(tmp, out, words, s);
+            or_shift_down(tmp, out, words, s);
+        }
+        from = out;
         e += s;
     }
 }
@@ -242,23 +260,29 @@ CellBox BitGrid::dilate_into(BitGrid& out, double r, const CellBox& box) const {
     // Only the words within reach of the box; bits shifted past them are
     // beyond every source's reach.
     const int oa = std::max(0, (b.i0 - R) >> 6), ob = std::min(wpr_ - 1, (b.i1 + R) >> 6), n = ob - oa + 1;
-    // One row buffer per offset d, built from the next larger d's (smaller
-    // reach) by dilating further.
+    // The row dilated for each offset d, built from the next larger d's
+    // (smaller reach) by dilating further; equal reaches share a row.
     std::vector<std::uint64_t> rows(static_cast<std::size_t>(R + 1) * n), tmp(n);
+    std::vector<const std::uint64_t*> level(R + 1);
     const std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
     for (int j = b.j0; j <= b.j1; ++j) {
         const std::uint64_t* src = &words_[static_cast<std::size_t>(j) * wpr_ + oa];
         if (std::all_of(src, src + n, [](std::uint64_t w) { return w == 0; })) continue;
         for (int d = R; d >= 0; --d) {
-            std::uint64_t* row = &rows[static_cast<std::size_t>(d) * n];
-            if (d == R) std::copy(src, src + n, row);
-            else std::copy(row + n, row + 2 * n, row);
-            dilate_row(row, tmp.data(), n, d == R ? 0 : half[d + 1], half[d]);
+            const std::uint64_t* from = d == R ? src : level[d + 1];
+            const int e = d == R ? 0 : half[d + 1];
+            if (half[d] == e) {
+                level[d] = from;
+            } else {
+                std::uint64_t* row = &rows[static_cast<std::size_t>(d) * n];
+                dilate_row(from, row, tmp.data(), n, e, half[d]);
+                level[d] = row;
+            }
         }
         for (int d = -R; d <= R; ++d) {
             int jj = j + d;
             if (jj < 0 || jj >= ny_) continue;
-            const std::uint64_t* row = &rows[static_cast<std::size_t>(std::abs(d)) * n];
+            const std::uint64_t* row = level[std::abs(d)];
             std::uint64_t* dst = &out.words_[static_cast<std::size_t>(jj) * wpr_ + oa];
             for (int w = 0; w < n; ++w) dst[w] |= row[w];
             if (ob == wpr_ - 1) dst[n - 1] &= tail;
