@@ -91,59 +91,78 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     double r = std::max(width * 0.5, cell_ * 0.5);
     int j0 = std::max(0, row(std::min(y0, y1) - r));
     int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
-    // The fast ways multiply by reciprocals where capsule_row divides; a row
-    // whose outcome they cannot be sure of is redone the exact way, so the
-    // cells set are capsule_row's.
+    if (j0 > j1) return;
+    // capsule_row's bounds, in cell units (v = (x - ox) / cell - 0.5), are
+    // linear in the row j but for the end discs: the band across the line
+    // [a + j k -/+ hb], its ends p + j q and that + l. Computed so, with
+    // reciprocals, they round differently from capsule_row's divisions, so
+    // a row whose outcome is not sure by far more than that rounding is
+    // redone the exact way: the cells set are capsule_row's.
     const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy, len = std::sqrt(len2);
-    const double rl = r * len, inv_dx = 1 / dx, inv_dy = 1 / dy;
-    const double sure_mm = kSureCells * cell_;
-    constexpr double kInf = 1e300;
+    const double inv_dx = dx != 0 ? 1 / dx : 0, inv_dy = dy != 0 ? 1 / dy : 0;
+    const double c0 = oy_ + 0.5 * cell_;  // cy(0)
+    const double k = dx * inv_dy, a = (x0 - ox_ + (c0 - y0) * k) * inv_cell_ - 0.5;
+    const double hb = r * len * std::abs(inv_dy) * inv_cell_;
+    const double q = -dy * inv_dx, p = (x0 - ox_ + (c0 - y0) * q) * inv_cell_ - 0.5;
+    const double l = len2 * inv_dx * inv_cell_;
+    const double v0 = (x0 - ox_) * inv_cell_ - 0.5, v1 = (x1 - ox_) * inv_cell_ - 0.5, rv = r * inv_cell_;
+    const double reach = (j1 + 1.0) * (std::abs(k) + std::abs(q));
+    const bool linear = len2 > 0 && std::abs(a) + std::abs(p) + hb + std::abs(l) + std::abs(v0) + std::abs(v1) + rv + reach < 5e7;
     // Rows more than r (and a margin far above rounding) from both ends'
     // y, between them: no end disc reaches them and the band's ends do not
-    // bound them, so the span is the band across the line, whose cell
-    // bounds are linear in the row: v = a + j * k.
+    // bound them.
     const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
-    const double k = dx * inv_dy, a = (x0 - ox_ + (oy_ + 0.5 * cell_ - y0) * k) * inv_cell_ - 0.5;
-    const double half_band = rl / std::abs(dy) * inv_cell_;
-    const bool linear = yhi - ylo > 2 * mid && std::abs(a) + half_band + std::abs(k) * (j1 + 1.0) < 1e7;
     for (int j = j0; j <= j1; ++j) {
         const double c = cy(j);
         int i0 = 0, i1 = -1;
-        if (linear && c - ylo >= mid && yhi - c >= mid) {
-            double v = a + j * k;
-            if (sure_floor(v - half_band, i0) && sure_floor(v + half_band, i1)) {
-                set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
-                continue;
+        if (linear) {
+            const double vc = a + j * k;
+            if (c - ylo >= mid && yhi - c >= mid) {
+                if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1)) {
+                    set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+                    continue;
+                }
+            } else {
+                double lo = 1, hi = 0;  // empty
+                auto unite = [&](double l0, double h0) {
+                    if (lo > hi) { lo = l0; hi = h0; return; }
+                    lo = std::min(lo, l0);
+                    hi = std::max(hi, h0);
+                };
+                if (double e = c - y0; std::abs(e) <= r) {
+                    double h = std::sqrt(r * r - e * e) * inv_cell_;
+                    unite(v0 - h, v0 + h);
+                }
+                if (double e = c - y1; std::abs(e) <= r) {
+                    double h = std::sqrt(r * r - e * e) * inv_cell_;
+                    unite(v1 - h, v1 + h);
+                }
+                bool band = true, sure = true;
+                double bl = -1e300, bh = 1e300;
+                if (dy != 0) bl = vc - hb, bh = vc + hb;
+                else if (std::abs(c - y0) > r) band = false;
+                if (dx != 0) {
+                    const double e = p + j * q;
+                    bl = std::max(bl, dx > 0 ? e : e + l);
+                    bh = std::min(bh, dx > 0 ? e + l : e);
+                } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
+                    band = false;
+                }
+                if (band) {
+                    sure = std::abs(bh - bl) > kSureCells;
+                    if (bl <= bh) unite(bl, bh);
+                }
+                if (sure && lo > hi) continue;  // nothing on this row
+                if (sure && sure_floor(lo, i0) && sure_floor(hi, i1)) {
+                    set_row_span(j, i0 + 1, i1);
+                    continue;
+                }
             }
         }
-        Interval span = disc_row(x0, y0, r, c);
-        span.unite(disc_row(x1, y1, r, c));
-        bool sure = true;
-        if (len2 > 0) {
-            const double ry = c - y0;
-            bool band = true;
-            Interval perp{-kInf, kInf}, along{-kInf, kInf};
-            if (dy != 0) perp = sorted(x0 + (dx * ry - rl) * inv_dy, x0 + (dx * ry + rl) * inv_dy);
-            else if (std::abs(ry) > r) band = false;
-            if (dx != 0) along = sorted(x0 + (-ry * dy) * inv_dx, x0 + (len2 - ry * dy) * inv_dx);
-            else if (double t = ry * dy; t < 0 || t > len2) band = false;
-            if (band) {
-                Interval both = intersect(perp, along);
-                sure = std::abs(both.hi - both.lo) > sure_mm;
-                span.unite(both);
-            }
-        }
-        if (sure && !span.empty()) {
-            sure = sure_floor((span.lo - ox_) * inv_cell_ - 0.5, i0) && sure_floor((span.hi - ox_) * inv_cell_ - 0.5, i1);
-            ++i0;
-        }
-        if (!sure) {
-            span = capsule_row(x0, y0, x1, y1, r, c);
-            if (span.empty()) continue;
-            i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
-            i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
-        }
+        Interval span = capsule_row(x0, y0, x1, y1, r, c);
         if (span.empty()) continue;
+        i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
+        i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
         set_row_span(j, i0, i1);
     }
 }
