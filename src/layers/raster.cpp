@@ -417,12 +417,19 @@ BitGrid BitGrid::filled() const {
     return out;
 }
 
+BitGrid BitGrid::empty_like() const {
+    BitGrid g;
+    g.ox_ = ox_, g.oy_ = oy_, g.cell_ = cell_, g.inv_cell_ = inv_cell_;
+    g.nx_ = nx_, g.ny_ = ny_, g.wpr_ = wpr_;
+    g.words_.assign(words_.size(), 0);
+    return g;
+}
+
 BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
     // Only the regions the seeds are in are flooded, so a layer with a few
-    // candidate cells costs a few small floods, not a whole-grid fill.
-    BitGrid out = seeds;
-    out.clear();
-    BitGrid visited = out, inside = out;
+    // candidate cells costs a few small floods, not a whole-grid fill. The
+    // seeds of an enclosed flood's spans go straight to out.
+    BitGrid out = empty_like(), visited = empty_like();
     std::vector<std::pair<int, int>> stack;
     std::vector<Span> spans;
     for (int j = 0; j < ny_; ++j) {
@@ -434,12 +441,18 @@ BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
                 if (get(i, j) || visited.get(i, j)) continue;
                 spans.clear();
                 if (flood_free(*this, visited, i, j, stack, &spans)) continue;
-                for (const Span& sp : spans) inside.set_row_span(sp.j, sp.a, sp.b);
+                for (const Span& sp : spans) {
+                    const std::size_t row = static_cast<std::size_t>(sp.j) * wpr_;
+                    for (int v = sp.a >> 6; v <= sp.b >> 6; ++v) {
+                        std::uint64_t m = ~std::uint64_t{0};
+                        if (v == sp.a >> 6) m &= ~std::uint64_t{0} << (sp.a & 63);
+                        if (v == sp.b >> 6) m &= ~std::uint64_t{0} >> (63 - (sp.b & 63));
+                        out.words_[row + v] |= seeds.words_[row + v] & m;
+                    }
+                }
             }
         }
     }
-    out = seeds;
-    out &= inside;
     return out;
 }
 

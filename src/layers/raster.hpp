@@ -115,6 +115,7 @@ private:
         out = k;
         return f > kSureCells && f < 1 - kSureCells;
     }
+    BitGrid empty_like() const;  // same shape, no cells set
     std::size_t word_index(int i, int j) const { return static_cast<std::size_t>(j) * wpr_ + (i >> 6); }
     double ox_ = 0, oy_ = 0, cell_ = 0.1, inv_cell_ = 10;
     int nx_ = 0, ny_ = 0, wpr_ = 0;

@@ -187,3 +187,31 @@ TEST(RasterExact, SureCellAgreesWithColAndRow) {
     }
     EXPECT_GT(sure, 100000);
 }
+
+TEST(RasterExact, EnclosedIsTheFilledHolesUnderTheSeeds) {
+    Gen gen;
+    BitGrid g(0, 0, 15.1, 9.7, 0.1);
+    int with_holes = 0;
+    for (int n = 0; n < 30; ++n) {
+        g.clear();
+        // Rings (holes), open arcs and strokes, some touching the border.
+        for (int k = 0; k < 5; ++k) {
+            double cx = gen.uniform(0, 15), cy = gen.uniform(0, 10), rad = gen.uniform(0.5, 4);
+            int sides = 3 + gen.pick(6), drawn = gen.pick(3) == 0 ? sides - 1 : sides;
+            for (int e = 0; e < drawn; ++e) {
+                double a0 = 2 * 3.14159265 * e / sides, a1 = 2 * 3.14159265 * (e + 1) / sides;
+                g.draw_segment(cx + rad * std::cos(a0), cy + rad * std::sin(a0), cx + rad * std::cos(a1),
+                               cy + rad * std::sin(a1), gen.uniform(0.1, 0.5));
+            }
+        }
+        BitGrid seeds = g;
+        seeds.clear();
+        for (int k = 0; k < 400; ++k) seeds.set(gen.pick(g.width()), gen.pick(g.height()));
+        BitGrid want = g.filled();
+        want.subtract(g);
+        want &= seeds;
+        ASSERT_TRUE(same(g.enclosed(seeds), want)) << n;
+        with_holes += want.any();
+    }
+    EXPECT_GT(with_holes, 10);
+}
