@@ -167,9 +167,14 @@ bool continues_straight(const layers::Segment& first, const layers::Segment& a, 
     if (b.move != a.move + 1) return false;
     if (std::abs(b.x0 - a.x1) > 1e-3f || std::abs(b.y0 - a.y1) > 1e-3f) return false;
     double fdx = first.x1 - first.x0, fdy = first.y1 - first.y0, bdx = b.x1 - b.x0, bdy = b.y1 - b.y0;
-    double lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
+    const double limit = std::cos(kStraightDeg * std::numbers::pi / 180);
+    // Square roots rather than hypot (a library call, 3 % of detection);
+    // hypot decides where the two could round to different sides of the limit.
+    double lf = std::sqrt(fdx * fdx + fdy * fdy), lb = std::sqrt(bdx * bdx + bdy * bdy);
     if (lf <= 0 || lb <= 0) return false;
-    return (fdx * bdx + fdy * bdy) / (lf * lb) >= std::cos(kStraightDeg * std::numbers::pi / 180);
+    if (double c = (fdx * bdx + fdy * bdy) / (lf * lb); std::abs(c - limit) > 1e-9) return c >= limit;
+    lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
+    return (fdx * bdx + fdy * bdy) / (lf * lb) >= limit;
 }
 
 struct Sample {
