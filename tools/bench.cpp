@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
         auto program = scaffold::gcode::parse(text, path);
         auto settings = scaffold::build_settings(program, {}, {});
         scaffold::overhang::SupportPoints points;
-        double detect_s = best_of(3, [&] {
+        double detect_s = best_of(5, [&] {
             auto stack = scaffold::layers::build_layers(program, settings);
             auto over = scaffold::overhang::find_overhangs(stack, settings);
             points = scaffold::overhang::place_points(over, stack, settings);

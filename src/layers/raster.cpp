@@ -9,7 +9,7 @@
 namespace scaffold::layers {
 
 BitGrid::BitGrid(double min_x, double min_y, double max_x, double max_y, double cell)
-    : ox_(min_x), oy_(min_y), cell_(cell) {
+    : ox_(min_x), oy_(min_y), cell_(cell), inv_cell_(1 / cell) {
     nx_ = std::max(1, static_cast<int>(std::ceil((max_x - min_x) / cell)));
     ny_ = std::max(1, static_cast<int>(std::ceil((max_y - min_y) / cell)));
     wpr_ = (nx_ + 63) / 64;
@@ -30,24 +30,6 @@ void BitGrid::clear(const CellBox& box) {
         std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
         std::fill(row + (b.i0 >> 6), row + (b.i1 >> 6) + 1, 0);
     }
-}
-
-void BitGrid::set_row_span(int j, int i0, int i1) {
-    if (j < 0 || j >= ny_) return;
-    i0 = std::max(i0, 0);
-    i1 = std::min(i1, nx_ - 1);
-    if (i0 > i1) return;
-    std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
-    int w0 = i0 >> 6, w1 = i1 >> 6;
-    std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63);
-    std::uint64_t hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
-    if (w0 == w1) {
-        row[w0] |= lo & hi;
-        return;
-    }
-    row[w0] |= lo;
-    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
-    row[w1] |= hi;
 }
 
 namespace {
@@ -109,11 +91,78 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     double r = std::max(width * 0.5, cell_ * 0.5);
     int j0 = std::max(0, row(std::min(y0, y1) - r));
     int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
+    if (j0 > j1) return;
+    // capsule_row's bounds, in cell units (v = (x - ox) / cell - 0.5), are
+    // linear in the row j but for the end discs: the band across the line
+    // [a + j k -/+ hb], its ends p + j q and that + l. Computed so, with
+    // reciprocals, they round differently from capsule_row's divisions, so
+    // a row whose outcome is not sure by far more than that rounding is
+    // redone the exact way: the cells set are capsule_row's.
+    const double dx = x1 - x0, dy = y1 - y0, len2 = dx * dx + dy * dy, len = std::sqrt(len2);
+    const double inv_dx = dx != 0 ? 1 / dx : 0, inv_dy = dy != 0 ? 1 / dy : 0;
+    const double c0 = oy_ + 0.5 * cell_;  // cy(0)
+    const double k = dx * inv_dy, a = (x0 - ox_ + (c0 - y0) * k) * inv_cell_ - 0.5;
+    const double hb = r * len * std::abs(inv_dy) * inv_cell_;
+    const double q = -dy * inv_dx, p = (x0 - ox_ + (c0 - y0) * q) * inv_cell_ - 0.5;
+    const double l = len2 * inv_dx * inv_cell_;
+    const double v0 = (x0 - ox_) * inv_cell_ - 0.5, v1 = (x1 - ox_) * inv_cell_ - 0.5, rv = r * inv_cell_;
+    const double reach = (j1 + 1.0) * (std::abs(k) + std::abs(q));
+    const bool linear = len2 > 0 && std::abs(a) + std::abs(p) + hb + std::abs(l) + std::abs(v0) + std::abs(v1) + rv + reach < 5e7;
+    // Rows more than r (and a margin far above rounding) from both ends'
+    // y, between them: no end disc reaches them and the band's ends do not
+    // bound them.
+    const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
     for (int j = j0; j <= j1; ++j) {
-        Interval span = capsule_row(x0, y0, x1, y1, r, cy(j));
+        const double c = cy(j);
+        int i0 = 0, i1 = -1;
+        if (linear) {
+            const double vc = a + j * k;
+            if (c - ylo >= mid && yhi - c >= mid) {
+                if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1)) {
+                    set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+                    continue;
+                }
+            } else {
+                double lo = 1, hi = 0;  // empty
+                auto unite = [&](double l0, double h0) {
+                    if (lo > hi) { lo = l0; hi = h0; return; }
+                    lo = std::min(lo, l0);
+                    hi = std::max(hi, h0);
+                };
+                if (double e = c - y0; std::abs(e) <= r) {
+                    double h = std::sqrt(r * r - e * e) * inv_cell_;
+                    unite(v0 - h, v0 + h);
+                }
+                if (double e = c - y1; std::abs(e) <= r) {
+                    double h = std::sqrt(r * r - e * e) * inv_cell_;
+                    unite(v1 - h, v1 + h);
+                }
+                bool band = true, sure = true;
+                double bl = -1e300, bh = 1e300;
+                if (dy != 0) bl = vc - hb, bh = vc + hb;
+                else if (std::abs(c - y0) > r) band = false;
+                if (dx != 0) {
+                    const double e = p + j * q;
+                    bl = std::max(bl, dx > 0 ? e : e + l);
+                    bh = std::min(bh, dx > 0 ? e + l : e);
+                } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
+                    band = false;
+                }
+                if (band) {
+                    sure = std::abs(bh - bl) > kSureCells;
+                    if (bl <= bh) unite(bl, bh);
+                }
+                if (sure && lo > hi) continue;  // nothing on this row
+                if (sure && sure_floor(lo, i0) && sure_floor(hi, i1)) {
+                    set_row_span(j, i0 + 1, i1);
+                    continue;
+                }
+            }
+        }
+        Interval span = capsule_row(x0, y0, x1, y1, r, c);
         if (span.empty()) continue;
-        int i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
-        int i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
+        i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
+        i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
         set_row_span(j, i0, i1);
     }
 }
@@ -185,14 +234,32 @@ void or_shift_down(const std::uint64_t* in, std::uint64_t* out, int words, int s
     }
 }
 
-// Horizontal dilation in place of a row already dilated by e cells, to k
-// cells, in O(log k) shifted ORs.
-void dilate_row(std::uint64_t* row, std::uint64_t* tmp, int words, int e, int k) {
+// One step of horizontal dilation by s cells (1 <= s < 64), out = in |
+// in shifted both ways; in and out may be the same row.
+void dilate_step(const std::uint64_t* in, std::uint64_t* out, int words, int s) {
+    std::uint64_t prev = 0;  // in[w - 1] before this step
+    for (int w = 0; w < words; ++w) {
+        const std::uint64_t cur = in[w], next = w + 1 < words ? in[w + 1] : 0;
+        out[w] = cur | cur << s | prev >> (64 - s) | cur >> s | next << (64 - s);
+        prev = cur;
+    }
+}
+
+// Horizontal dilation of `in` (already dilated by e cells) to k > e cells
+// into out, in O(log k) steps; tmp is scratch of `words` words.
+void dilate_row(const std::uint64_t* in, std::uint64_t* out, std::uint64_t* tmp, int words, int e, int k) {
+    const std::uint64_t* from = in;
     while (e < k) {
         int s = std::min(e + 1, k - e);
-        std::copy(row, row + words, tmp);
-        or_shift_up(tmp, row, words, s);
-        or_shift_down(tmp, row, words, s);
+        if (s < 64) {
+            dilate_step(from, out, words, s);
+        } else {
+            std::copy(from, from + words, tmp);
+            std::copy(tmp, tmp + words, out);
+            or_shift_up(tmp, out, words, s);
+            or_shift_down(tmp, out, words, s);
+        }
+        from = out;
         e += s;
     }
 }
@@ -212,23 +279,29 @@ CellBox BitGrid::dilate_into(BitGrid& out, double r, const CellBox& box) const {
     // Only the words within reach of the box; bits shifted past them are
     // beyond every source's reach.
     const int oa = std::max(0, (b.i0 - R) >> 6), ob = std::min(wpr_ - 1, (b.i1 + R) >> 6), n = ob - oa + 1;
-    // One row buffer per offset d, built from the next larger d's (smaller
-    // reach) by dilating further.
+    // The row dilated for each offset d, built from the next larger d's
+    // (smaller reach) by dilating further; equal reaches share a row.
     std::vector<std::uint64_t> rows(static_cast<std::size_t>(R + 1) * n), tmp(n);
+    std::vector<const std::uint64_t*> level(R + 1);
     const std::uint64_t tail = (nx_ & 63) ? (~std::uint64_t{0} >> (64 - (nx_ & 63))) : ~std::uint64_t{0};
     for (int j = b.j0; j <= b.j1; ++j) {
         const std::uint64_t* src = &words_[static_cast<std::size_t>(j) * wpr_ + oa];
         if (std::all_of(src, src + n, [](std::uint64_t w) { return w == 0; })) continue;
         for (int d = R; d >= 0; --d) {
-            std::uint64_t* row = &rows[static_cast<std::size_t>(d) * n];
-            if (d == R) std::copy(src, src + n, row);
-            else std::copy(row + n, row + 2 * n, row);
-            dilate_row(row, tmp.data(), n, d == R ? 0 : half[d + 1], half[d]);
+            const std::uint64_t* from = d == R ? src : level[d + 1];
+            const int e = d == R ? 0 : half[d + 1];
+            if (half[d] == e) {
+                level[d] = from;
+            } else {
+                std::uint64_t* row = &rows[static_cast<std::size_t>(d) * n];
+                dilate_row(from, row, tmp.data(), n, e, half[d]);
+                level[d] = row;
+            }
         }
         for (int d = -R; d <= R; ++d) {
             int jj = j + d;
             if (jj < 0 || jj >= ny_) continue;
-            const std::uint64_t* row = &rows[static_cast<std::size_t>(std::abs(d)) * n];
+            const std::uint64_t* row = level[std::abs(d)];
             std::uint64_t* dst = &out.words_[static_cast<std::size_t>(jj) * wpr_ + oa];
             for (int w = 0; w < n; ++w) dst[w] |= row[w];
             if (ob == wpr_ - 1) dst[n - 1] &= tail;
@@ -344,12 +417,19 @@ BitGrid BitGrid::filled() const {
     return out;
 }
 
+BitGrid BitGrid::empty_like() const {
+    BitGrid g;
+    g.ox_ = ox_, g.oy_ = oy_, g.cell_ = cell_, g.inv_cell_ = inv_cell_;
+    g.nx_ = nx_, g.ny_ = ny_, g.wpr_ = wpr_;
+    g.words_.assign(words_.size(), 0);
+    return g;
+}
+
 BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
     // Only the regions the seeds are in are flooded, so a layer with a few
-    // candidate cells costs a few small floods, not a whole-grid fill.
-    BitGrid out = seeds;
-    out.clear();
-    BitGrid visited = out, inside = out;
+    // candidate cells costs a few small floods, not a whole-grid fill. The
+    // seeds of an enclosed flood's spans go straight to out.
+    BitGrid out = empty_like(), visited = empty_like();
     std::vector<std::pair<int, int>> stack;
     std::vector<Span> spans;
     for (int j = 0; j < ny_; ++j) {
@@ -361,12 +441,18 @@ BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
                 if (get(i, j) || visited.get(i, j)) continue;
                 spans.clear();
                 if (flood_free(*this, visited, i, j, stack, &spans)) continue;
-                for (const Span& sp : spans) inside.set_row_span(sp.j, sp.a, sp.b);
+                for (const Span& sp : spans) {
+                    const std::size_t row = static_cast<std::size_t>(sp.j) * wpr_;
+                    for (int v = sp.a >> 6; v <= sp.b >> 6; ++v) {
+                        std::uint64_t m = ~std::uint64_t{0};
+                        if (v == sp.a >> 6) m &= ~std::uint64_t{0} << (sp.a & 63);
+                        if (v == sp.b >> 6) m &= ~std::uint64_t{0} >> (63 - (sp.b & 63));
+                        out.words_[row + v] |= seeds.words_[row + v] & m;
+                    }
+                }
             }
         }
     }
-    out = seeds;
-    out &= inside;
     return out;
 }
 

@@ -2,6 +2,7 @@
 // A bit grid over the print's XY bounds; one bit per cell. Layers are drawn
 // into it as thick lines of their real width. Memory follows the print's
 // bounding box, not the bed.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -37,6 +38,14 @@ public:
     int col(double x) const { return static_cast<int>(std::floor((x - ox_) / cell_)); }  // may be outside [0, width)
     int row(double y) const { return static_cast<int>(std::floor((y - oy_) / cell_)); }
     CellBox clipped(CellBox b) const;  // b inside the grid
+    // The cell of a point computed in a way that may round differently from
+    // the exact computation (by far less than kSureCells): false when the
+    // point lies that close to a cell border, where only the exact point
+    // can tell. Multiplies where col() and row() divide.
+    bool sure_cell(double x, double y, int& i, int& j) const {
+        return sure_floor((x - ox_) * inv_cell_, i) && sure_floor((y - oy_) * inv_cell_, j);
+    }
+    static constexpr double kSureCells = 1e-6;
 
     bool get(int i, int j) const {
         if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return false;
@@ -48,7 +57,24 @@ public:
     }
     void clear();
     void clear(const CellBox& box);  // whole words: the grid must be empty outside box
-    void set_row_span(int j, int i0, int i1);  // cells i0..i1 of row j (inclusive, clipped)
+    // Cells i0..i1 of row j (inclusive, clipped).
+    void set_row_span(int j, int i0, int i1) {
+        if (j < 0 || j >= ny_) return;
+        i0 = std::max(i0, 0);
+        i1 = std::min(i1, nx_ - 1);
+        if (i0 > i1) return;
+        std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
+        int w0 = i0 >> 6, w1 = i1 >> 6;
+        std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63);
+        std::uint64_t hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
+        if (w0 == w1) {
+            row[w0] |= lo & hi;
+            return;
+        }
+        row[w0] |= lo;
+        for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
+        row[w1] |= hi;
+    }
     const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
 
@@ -79,8 +105,19 @@ public:
     const std::vector<std::uint64_t>& words() const { return words_; }
 
 private:
+    // floor(v), when v is clear of integers by kSureCells (and fits an int
+    // with that margin).
+    static bool sure_floor(double v, int& out) {
+        if (!(std::abs(v) < 1e8)) return false;
+        int k = static_cast<int>(v);
+        if (v < k) --k;
+        double f = v - k;
+        out = k;
+        return f > kSureCells && f < 1 - kSureCells;
+    }
+    BitGrid empty_like() const;  // same shape, no cells set
     std::size_t word_index(int i, int j) const { return static_cast<std::size_t>(j) * wpr_ + (i >> 6); }
-    double ox_ = 0, oy_ = 0, cell_ = 0.1;
+    double ox_ = 0, oy_ = 0, cell_ = 0.1, inv_cell_ = 10;
     int nx_ = 0, ny_ = 0, wpr_ = 0;
     std::vector<std::uint64_t> words_;
 };

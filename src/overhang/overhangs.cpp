@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <numbers>
+#include <thread>
 
 namespace scaffold::overhang {
 
@@ -165,9 +167,14 @@ bool continues_straight(const layers::Segment& first, const layers::Segment& a, 
     if (b.move != a.move + 1) return false;
     if (std::abs(b.x0 - a.x1) > 1e-3f || std::abs(b.y0 - a.y1) > 1e-3f) return false;
     double fdx = first.x1 - first.x0, fdy = first.y1 - first.y0, bdx = b.x1 - b.x0, bdy = b.y1 - b.y0;
-    double lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
+    const double limit = std::cos(kStraightDeg * std::numbers::pi / 180);
+    // Square roots rather than hypot (a library call, 3 % of detection);
+    // hypot decides where the two could round to different sides of the limit.
+    double lf = std::sqrt(fdx * fdx + fdy * fdy), lb = std::sqrt(bdx * bdx + bdy * bdy);
     if (lf <= 0 || lb <= 0) return false;
-    return (fdx * bdx + fdy * bdy) / (lf * lb) >= std::cos(kStraightDeg * std::numbers::pi / 180);
+    if (double c = (fdx * bdx + fdy * bdy) / (lf * lb); std::abs(c - limit) > 1e-9) return c >= limit;
+    lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
+    return (fdx * bdx + fdy * bdy) / (lf * lb) >= limit;
 }
 
 struct Sample {
@@ -188,6 +195,37 @@ constexpr double kDanglingEnd = 1.0;
 // two held parts: slicers leave such runs unmarked at a slope's edge.
 constexpr double kShortSpan = 2.0;
 
+// ceil(hypot(dx, dy) / step), at least 1: the samples of a segment after
+// its first. A square root instead of hypot, unless close to an integer.
+int sample_count(double dx, double dy, double step) {
+    double q = std::sqrt(dx * dx + dy * dy) / step, c = std::ceil(q);
+    if (c - q < 1e-9 * (c + 1) || q - (c - 1) < 1e-9 * (c + 1)) c = std::ceil(std::hypot(dx, dy) / step);
+    return std::max(1, static_cast<int>(c));
+}
+
+// Whether every centre-line sample straight_piece takes of segments
+// [first, last] is held (most pieces): found without storing the samples,
+// stepping by a multiplied increment, a sample near a cell border redone
+// the exact way.
+bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                      const layers::BitGrid& held, double step) {
+    for (std::size_t k = first; k <= last; ++k) {
+        const layers::Segment& sg = segs[k];
+        const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0;
+        const int n = sample_count(dx, dy, step);
+        const double x0 = sg.x0, y0 = sg.y0, ddx = dx / n, ddy = dy / n;
+        for (int i = k == first ? 0 : 1; i <= n; ++i) {
+            int ci, cj;
+            if (!held.sure_cell(x0 + i * ddx, y0 + i * ddy, ci, cj)) {
+                double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
+                ci = held.col(x), cj = held.row(y);
+            }
+            if (!held.get(ci, cj)) return false;
+        }
+    }
+    return true;
+}
+
 // Segments [first, last] (one straight piece of one path): an unheld run of
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
@@ -196,6 +234,7 @@ constexpr double kShortSpan = 2.0;
 void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
                     std::vector<Sample>& p) {
+    if (all_samples_held(segs, first, last, held, step)) return;  // nothing to draw
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -204,7 +243,9 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         int n = std::max(1, static_cast<int>(std::ceil(len / step)));
         for (int i = p.empty() ? 0 : 1; i <= n; ++i) {
             double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-            p.push_back({x, y, s0 + len * t, sg.width, held.get(held.col(x), held.row(y))});
+            int ci, cj;
+            if (!held.sure_cell(x, y, ci, cj)) ci = held.col(x), cj = held.row(y);
+            p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj)});
         }
     }
     for (std::size_t i = 0; i < p.size();) {
@@ -282,11 +323,10 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
     return out;
 }
 
-}  // namespace
-
-Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
-    Overhangs out;
-    const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
+// The overhang regions of layers [first, end), in layer order. Each layer's
+// depend on it and the layer beneath only, so ranges can run in parallel.
+void find_regions_in(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto, int first,
+                     int end, std::vector<Region>& found) {
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     // Scratch grids for the whole stack, cleared per layer rather than
     // reallocated: the layer beneath (all its material, and the part of it
@@ -298,8 +338,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     bool below_has_skirt = false;
     int below_index = -1;
     std::vector<Sample> samples;
-    std::vector<Region> found;
-    for (int n = 0; n < static_cast<int>(stack.layers.size()); ++n) {
+    for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
         if (layer.below != below_index) {
@@ -356,6 +395,58 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
             found.push_back(std::move(r));
         }
     }
+}
+
+// Detection runs on at most this many threads.
+constexpr std::size_t kMaxThreads = 4;
+// Fewer segments a thread (the layers' and those beneath) cost more to
+// start than they save.
+constexpr std::size_t kMinSegmentsPerThread = 20000;
+
+// find_regions_in over the whole stack, in ranges of about equal work on
+// up to kMaxThreads threads, joined in layer order: the result does not
+// depend on the split.
+std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto) {
+    const int n_layers = static_cast<int>(stack.layers.size());
+    std::vector<std::size_t> work(n_layers + 1, 0);
+    for (int n = 0; n < n_layers; ++n) {
+        const layers::Layer& layer = stack.layers[n];
+        std::size_t w = layer.segments.size() + (layer.below >= 0 ? stack.layers[layer.below].segments.size() : 0);
+        work[n + 1] = work[n] + w;
+    }
+    const std::size_t threads = std::min({std::max<std::size_t>(1, std::thread::hardware_concurrency()), kMaxThreads,
+                                          std::max<std::size_t>(1, work[n_layers] / kMinSegmentsPerThread)});
+    std::vector<int> bounds{0};
+    for (std::size_t t = 1; t < threads; ++t)
+        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / threads) - work.begin()));
+    bounds.push_back(n_layers);
+    std::vector<std::vector<Region>> parts(threads);
+    std::vector<std::exception_ptr> errors(threads);
+    auto run = [&](std::size_t t) {
+        try {
+            find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
+        } catch (...) {
+            errors[t] = std::current_exception();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run, t);
+    run(0);
+    for (std::thread& th : pool) th.join();
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+    std::vector<Region> found = std::move(parts[0]);
+    for (std::size_t t = 1; t < threads; ++t)
+        for (Region& r : parts[t]) found.push_back(std::move(r));
+    return found;
+}
+
+}  // namespace
+
+Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
+    Overhangs out;
+    const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
+    const std::vector<Region> found = find_regions(stack, s, proto);
     // Drop specks: overhangs smaller than the minimum area, judged over the
     // whole chain of regions that continue one another from layer to layer,
     // not per layer. A steep slope overhangs by a sliver on every layer;
