@@ -82,8 +82,38 @@ bool any_in_row(const layers::BitGrid& g, int j, int i0, int i1) {
 
 }  // namespace
 
+int Obstacles::fast_disc(int layer, double x, double y, double r) const {
+    const std::int64_t key = std::llround(r * 1e6);
+    // The same radius comes many times in a row (one column, layer by layer).
+    if (!last_fast_ || last_key_ != key) {
+        last_fast_ = &fast_[key];
+        last_key_ = key;
+    }
+    Grown& g = *last_fast_;
+    if (++g.asked < kFastAfter) return -1;
+    const layers::BitGrid& m = model_[layer];
+    // Only for grids of modest size: two more rasters per layer and radius.
+    if (static_cast<double>(m.width()) * m.height() * layer_count() > 4e9) return -1;
+    if (g.surely_blocked.empty()) {
+        g.surely_blocked.resize(model_.size());
+        g.maybe_blocked.resize(model_.size());
+    }
+    const double half_diag = m.cell() * 0.7072;
+    if (g.maybe_blocked[layer].width() == 0) {
+        g.maybe_blocked[layer] = m.dilated(r + half_diag);
+        g.surely_blocked[layer] = r > half_diag ? m.dilated(r - half_diag) : m;
+    }
+    // The query lies within half a diagonal of its cell's centre.
+    int i = m.col(x), j = m.row(y);
+    if (i < 0 || j < 0 || i >= m.width() || j >= m.height()) return -1;
+    if (r > half_diag && g.surely_blocked[layer].get(i, j)) return 0;
+    if (!g.maybe_blocked[layer].get(i, j)) return 1;
+    return -1;
+}
+
 bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
+    if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
     // The planner asks this millions of times: whole rows of the disc a
     // word at a time (the same cells as any_cell_in_disc visits).
     const layers::BitGrid& g = model_[layer];

@@ -2,6 +2,8 @@
 // What the planner must keep clear of: the model, per layer, as rasters.
 // Answers "is a disc free of the model (plus the gap) on layer L" and "where
 // is the model top under a column", so pillars and bridges never hit it.
+#include <cstdint>
+#include <map>
 #include <vector>
 
 #include "gcode/settings.hpp"
@@ -33,10 +35,24 @@ public:
     double inflate = 0;
 
 private:
+    // disc_clear's fast path for a radius asked often (a pillar's body is
+    // tested at one radius on every layer it passes): per layer, the model
+    // grown by r less and by r plus half a cell's diagonal answer most
+    // queries exactly with one lookup; the rest take the exact test.
+    struct Grown {
+        long long asked = 0;
+        std::vector<layers::BitGrid> surely_blocked, maybe_blocked;  // per layer, lazily
+    };
+    static constexpr long long kFastAfter = 4000;  // queries of one radius before its rasters are built
+    int fast_disc(int layer, double x, double y, double r) const;  // 1 clear, 0 blocked, -1 unknown
+
     std::vector<double> z_, h_;
     std::vector<int> below_;
     std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
     mutable std::vector<layers::BitGrid> grown_;  // model_ dilated by `inflate`, lazily
+    mutable std::map<std::int64_t, Grown> fast_;   // by radius in micrometres
+    mutable Grown* last_fast_ = nullptr;            // the last radius asked (map nodes stay put)
+    mutable std::int64_t last_key_ = 0;
 };
 
 }  // namespace scaffold::plan
