@@ -92,14 +92,17 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
     Grown& g = *last_fast_;
     if (++g.asked < kFastAfter) return -1;
     const layers::BitGrid& m = model_[layer];
-    // Only for grids of modest size: two more rasters per layer and radius.
-    if (static_cast<double>(m.width()) * m.height() * layer_count() > 4e9) return -1;
     if (g.surely_blocked.empty()) {
         g.surely_blocked.resize(model_.size());
         g.maybe_blocked.resize(model_.size());
     }
     const double half_diag = m.cell() * 0.7072;
     if (g.maybe_blocked[layer].width() == 0) {
+        // Two rasters the size of the layer's: within a fixed budget, so
+        // the memory bound stays the one of the obstacles themselves.
+        const std::size_t bytes = 2 * m.words().size() * sizeof(std::uint64_t);
+        if (fast_bytes_ + bytes > kFastBudget) return -1;
+        fast_bytes_ += bytes;
         g.maybe_blocked[layer] = m.dilated(r + half_diag);
         g.surely_blocked[layer] = r > half_diag ? m.dilated(r - half_diag) : m;
     }
