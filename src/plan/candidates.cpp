@@ -285,8 +285,11 @@ void BridgeSearch::evaluate(int seed) {
     auto usable = [&](int a, int b, double z) {
         double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
         double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
-        return !rejected_.count(key_of(x0, y0, x1, y1, z)) && end_stands(x0, y0, z) && end_stands(x1, y1, z) &&
-               (!eager || bar_clear(x0, y0, x1, y1, z));
+        // The bar before the ends when the bar is tested here at all: a
+        // blocked bar spares the pillar searches under its ends.
+        if (rejected_.count(key_of(x0, y0, x1, y1, z))) return false;
+        if (eager && !bar_clear(x0, y0, x1, y1, z)) return false;
+        return end_stands(x0, y0, z) && end_stands(x1, y1, z);
     };
 
     // Points by the highest bar that carries them, to grow the carried set

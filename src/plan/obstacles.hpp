@@ -44,7 +44,7 @@ private:
         std::vector<layers::BitGrid> surely_blocked, maybe_blocked;  // per layer, lazily
     };
     static constexpr long long kFastAfter = 4000;  // queries of one radius before its rasters are built
-    static constexpr std::size_t kFastBudget = std::size_t{256} << 20;  // bytes for all of them
+    static constexpr std::size_t kFastBudget = std::size_t{64} << 20;  // bytes for all of them
     int fast_disc(int layer, double x, double y, double r) const;  // 1 clear, 0 blocked, -1 unknown
 
     std::vector<double> z_, h_;
