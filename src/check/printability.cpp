@@ -358,6 +358,44 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     };
     std::vector<std::pair<int, layers::BitGrid>> worst_grids;  // for the SVGs
 
+    // Support extruded twice on a layer: each support path (moves that follow
+    // one another) drawn with half its width, cells already drawn by an
+    // earlier path of the layer counted. Within one path the joints overlap
+    // by construction and do not count.
+    layers::BitGrid drawn = proto;
+    auto support_overlap = [&](const std::vector<layers::Segment>& segs) {
+        drawn.clear();
+        std::size_t twice = 0;
+        layers::BitGrid path;
+        for (std::size_t k = 0; k < segs.size();) {
+            if (!is_support_move(out.moves[segs[k].move])) { ++k; continue; }
+            std::size_t e = k + 1;
+            while (e < segs.size() && segs[e].move == segs[e - 1].move + 1 && is_support_move(out.moves[segs[e].move])) ++e;
+            double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+            for (std::size_t i = k; i < e; ++i) {
+                x0 = std::min({x0, double(segs[i].x0), double(segs[i].x1)});
+                y0 = std::min({y0, double(segs[i].y0), double(segs[i].y1)});
+                x1 = std::max({x1, double(segs[i].x0), double(segs[i].x1)});
+                y1 = std::max({y1, double(segs[i].y0), double(segs[i].y1)});
+            }
+            // The path's own small grid, aligned with the layer's cells.
+            const int i0 = proto.col(x0) - 4, j0 = proto.row(y0) - 4, i1 = proto.col(x1) + 4, j1 = proto.row(y1) + 4;
+            path = layers::BitGrid(proto.origin_x() + i0 * proto.cell(), proto.origin_y() + j0 * proto.cell(),
+                                   proto.origin_x() + (i1 + 1) * proto.cell(), proto.origin_y() + (j1 + 1) * proto.cell(),
+                                   proto.cell());
+            for (std::size_t i = k; i < e; ++i)
+                path.draw_segment(segs[i].x0, segs[i].y0, segs[i].x1, segs[i].y1, segs[i].width * 0.5);
+            for (int j = 0; j < path.height(); ++j)
+                for (int i = 0; i < path.width(); ++i) {
+                    if (!path.get(i, j)) continue;
+                    if (drawn.get(i + i0, j + j0)) ++twice;
+                    else drawn.set(i + i0, j + j0);
+                }
+            k = e;
+        }
+        return static_cast<double>(twice) * proto.cell_area();
+    };
+
     for (int L = 0; L < static_cast<int>(stack.layers.size()); ++L) {
         const layers::Layer& layer = stack.layers[L];
         while (!cache.empty() && cache.begin()->first < L - 40) cache.erase(cache.begin());
@@ -385,6 +423,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 }
             }
         }
+        if (here.support.any()) r.support_overlap_mm2 += support_overlap(stack.layers[L].segments);
         if (layer.on_bed) continue;
 
         // "Below": all material within one nominal layer, support within three.
@@ -572,6 +611,8 @@ std::string report_text(const CheckReport& r) {
     for (const auto& w : r.worst_collisions)
         o += "    layer " + std::to_string(w.layer) + " z " + fixed(w.z, 2) + ": " + fixed(w.area_mm2, 2) +
              " mm^2 around (" + fixed(w.x, 1) + ", " + fixed(w.y, 1) + ")\n";
+    o += "  support extruded twice (bead cores of two paths overlapping, reported only): " +
+         fixed(r.support_overlap_mm2, 2) + " mm^2\n";
     o += "  extrusion: " + std::to_string(r.bad_extrusions) + " bad widths, " + std::to_string(r.e_jumps) + " E jumps, " +
          std::to_string(r.outside_bed) + " outside the bed\n";
     for (const auto& n : r.extrusion_notes) o += "    " + n + "\n";
@@ -617,6 +658,7 @@ std::string report_json(const CheckReport& r) {
     o += "  \"unheld_support_mm2\": " + fixed(r.unheld_support_mm2, 3) + ",\n";
     o += "  \"worst_unheld\": " + issues(r.worst_unheld) + ",\n";
     o += "  \"collision_mm2\": " + fixed(r.collision_mm2, 3) + ",\n";
+    o += "  \"support_overlap_mm2\": " + fixed(r.support_overlap_mm2, 3) + ",\n";
     o += "  \"worst_collisions\": " + issues(r.worst_collisions) + ",\n";
     o += "  \"bad_extrusions\": " + std::to_string(r.bad_extrusions) + ",\n";
     o += "  \"e_jumps\": " + std::to_string(r.e_jumps) + ",\n";

@@ -48,6 +48,10 @@ struct CheckReport {
     std::vector<LayerIssue> worst_unheld;
     double collision_mm2 = 0;
     std::vector<LayerIssue> worst_collisions;
+    // Support printed over support of another path on the same layer (bead
+    // cores, half the width, overlapping): extruded twice. Reported, not a
+    // failure: crossing loops overlap a little by design.
+    double support_overlap_mm2 = 0;
     int bad_extrusions = 0;        // implied width out of bounds
     int e_jumps = 0;               // large E without motion
     int outside_bed = 0;           // extrusions off the bed

@@ -111,6 +111,29 @@ TEST(Check, PillarInsideTheSparseInfillCollides) {
     EXPECT_GT(r.collision_mm2, 10.0);
 }
 
+TEST(Check, SupportPrintedTwiceIsMeasured) {
+    // The same 2 mm support square twice per layer (two paths, a travel
+    // between) beside a cube: the second retraces the first.
+    auto build = [](bool twice) {
+        SynthGcode g;
+        for (int l = 1; l <= 5; ++l) {
+            g.layer(0.2 * l);
+            g.type("External perimeter");
+            g.filled_rect(100, 100, 110, 110);
+            g.type("Support material");
+            g.rect_outline(120, 120, 122, 122);
+            if (twice) g.rect_outline(120, 120, 122, 122);
+        }
+        return run(g);
+    };
+    auto once = build(false), two = build(true);
+    EXPECT_LT(once.support_overlap_mm2, 0.05);
+    // A 2 mm square's outline is 8 mm of bead; its core (half of 0.45 mm)
+    // is about 1.8 mm^2 a layer, 5 layers.
+    EXPECT_GT(two.support_overlap_mm2, 5.0);
+    EXPECT_LT(two.support_overlap_mm2, 12.0);
+}
+
 TEST(Check, EJumpFails) {
     SynthGcode g = cube(5);
     g.raw("G1 E50 F2400");  // 45+ mm of filament pushed without motion
