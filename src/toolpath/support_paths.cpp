@@ -29,6 +29,10 @@ constexpr double kZEps = 1e-6;
 // already printed on the layer retraces it.
 constexpr double kRetrace = 0.2;
 
+// Share of (reach + half a bead) within which a printed ring holds another
+// column's loop on the next layer: the margin covers the polygon's chords.
+constexpr double kHeld = 0.8;
+
 struct Square {
     double x, y, half;
     bool overlaps(const Square& o) const { return std::abs(x - o.x) < half + o.half && std::abs(y - o.y) < half + o.half; }
@@ -85,6 +89,15 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                         const plan::Obstacles* obstacles) {
     SupportPaths out;
     const double w = s.support_width;
+    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
+    // The layer printed next above each layer (-1 for the top).
+    std::vector<int> next(stack.layers.size(), -1);
+    for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l)
+        for (int k = l + 1; k < static_cast<int>(stack.layers.size()); ++k)
+            if (!stack.layers[k].purge && stack.layers[k].z > stack.layers[l].z + kZEps) {
+                next[l] = k;
+                break;
+            }
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
@@ -116,11 +129,30 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // A loop wholly on a raft of this layer is printed by the raft.
             if (first_layer && std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.contains({cx, cy, r}); }))
                 continue;
-            const double rc = r - w / 2;
-            if (std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
-                    return std::hypot(o.x - cx, o.y - cy) + std::abs(o.rc - rc) <= kRetrace * w;
-                }))
+            const double rc = plan::loop_shape(r, w).centre_radius;
+            // How far a ring's centre line strays from another's at most.
+            auto apart = [](const Ring& o, double x, double y, double rc_) {
+                return std::hypot(o.x - x, o.y - y) + std::abs(o.rc - rc_);
+            };
+            if (std::any_of(rings.begin(), rings.end(), [&](const Ring& o) { return apart(o, cx, cy, rc) <= kRetrace * w; }))
                 continue;
+            // A loop mostly on top of one already printed on this layer is
+            // left out where that one also holds this column's next loop (its
+            // centre line within the reach of the printed bead): pillars
+            // standing closer than their diameter then print one loop, not
+            // two crossing ones. Never a column's top two layers (its tip).
+            if (next[l] >= 0 && c.z1 > stack.layers[next[l]].z + kZEps) {
+                const double z2 = stack.layers[next[l]].z;
+                const double t2 = c.z1 > c.z0 ? (z2 - c.z0) / (c.z1 - c.z0) : 1.0;
+                const double cx2 = c.x0 + (c.x1 - c.x0) * t2, cy2 = c.y0 + (c.y1 - c.y0) * t2;
+                const double rc2 = plan::loop_shape(plan::column_radius_at(c, z2, s), w).centre_radius;
+                const double hold = kHeld * (stack.layers[next[l]].height * slope + w / 2);
+                if (c.z1 > z2 + stack.layers[next[l]].height + kZEps &&
+                    std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
+                        return apart(o, cx, cy, rc) <= hold && apart(o, cx2, cy2, rc2) <= hold;
+                    }))
+                    continue;
+            }
             rings.push_back({cx, cy, rc});
             Path p;
             p.kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
