@@ -67,6 +67,12 @@ bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, d
 // share of the pillar radius.
 constexpr double kThinFactor = 0.6;
 
+// A trunk holds a loop whose centre line strays from its own by at most
+// this share of (reach + half a bead); a pillar leans towards a trunk whose
+// centre is within kSteer mm.
+constexpr double kHold = 0.8;
+constexpr double kSteer = 3.0;
+
 // Farthest a pillar may wander sideways while stepping around the model.
 constexpr double kMaxWander = 15.0;
 
@@ -77,9 +83,10 @@ struct Step {
 // Walks the column down from its top layer, stepping aside where the model
 // comes too close. Returns the centre per layer (top first), with the base.
 bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-             std::vector<Step>& path) {
+             std::vector<Step>& path, const Trunks* trunks) {
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     double cx = proto.x1, cy = proto.y1, wander = 0;
+    double height_above = 0;  // of the layer of path.back()
     path.clear();
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
         const layers::Layer& layer = stack.layers[l];
@@ -88,6 +95,37 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         bool tip = proto.top == Top::Contact && layer.z > proto.contact_z - 2 * s.layer_height + 1e-6;
         double need = r + (tip ? kTipClearance : s.xy_gap);
         bool first = path.empty();
+        if (trunks && !first && !trunks->at(l).empty()) {
+            // Stand on a trunk whose loop here holds our loop above (its
+            // centre line within the reach of the trunk's bead).
+            const Step& up = path.back();
+            const double rc_up = loop_shape(column_radius_at(proto, up.z, s), s.support_width).centre_radius;
+            const double hold = kHold * (height_above * slope + s.support_width / 2);
+            for (const Trunks::Loop& o : trunks->at(l))
+                if (std::hypot(o.x - up.x, o.y - up.y) + std::abs(o.rc - rc_up) <= hold) {
+                    proto.base = Base::Column;
+                    proto.z0 = layer.z;
+                    return true;
+                }
+            // Otherwise lean towards the nearest trunk within reach, as far
+            // as a loop may shift on the one below.
+            const Trunks::Loop* near = nullptr;
+            double near_d = kSteer;
+            for (const Trunks::Loop& o : trunks->at(l)) {
+                double d = std::hypot(o.x - cx, o.y - cy);
+                if (d < near_d) { near_d = d; near = &o; }
+            }
+            const double step = 0.8 * (layer.height * slope + s.support_width / 2);
+            if (near && near_d > 1e-9 && wander + step <= kMaxWander) {
+                double k = std::min(step, near_d) / near_d;
+                double nx = cx + (near->x - cx) * k, ny = cy + (near->y - cy) * k;
+                if (obs.disc_clear(l, nx, ny, need)) {
+                    cx = nx;
+                    cy = ny;
+                    wander += std::min(step, near_d);
+                }
+            }
+        }
         if (!obs.disc_clear(l, cx, cy, need) && !first) {
             // Step aside by what the loop below still holds, preferring the
             // direction with the most room; fixed order breaks ties.
@@ -110,6 +148,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         }
         if (obs.disc_clear(l, cx, cy, need)) {
             path.push_back({cx, cy, layer.z});
+            height_above = layer.height;
             continue;
         }
         // Stand on the model only where it holds the whole bottom loop (every
@@ -186,7 +225,7 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
-                                               const Settings& s) {
+                                               const Settings& s, const Trunks* trunks) {
     int top_layer = stack.layers[overhang_layer].below;
     if (top == Top::Contact)
         for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
@@ -218,13 +257,13 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 Column c = shape;
                 c.x0 = c.x1 = x + d * std::cos(a);
                 c.y0 = c.y1 = y + d * std::sin(a);
-                if (!descend(c, top_layer, stack, obs, s, path)) continue;
+                if (!descend(c, top_layer, stack, obs, s, path, trunks)) continue;
                 if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
                 // Thin pillars only where they stay within the slenderness limit.
                 if (c.radius < proto.radius && c.z1 - c.z0 > 2 * c.radius * s.slenderness) continue;
                 std::vector<Column> chain = columns_of(c, path);
                 if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
-                fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
+                if (chain.front().base == Base::Bed) fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
             }
         }
@@ -241,8 +280,21 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     return std::nullopt;
 }
 
+void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {
+    for (const Column& c : chain)
+        for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
+            const double z = stack.layers[l].z;
+            if (stack.layers[l].purge || z <= c.z0 + 1e-6 || z > c.z1 + 1e-6) continue;
+            double x, y;
+            column_centre_at(c, z, x, y);
+            at_[l].push_back({x, y, loop_shape(column_radius_at(c, z, s), s.support_width).centre_radius});
+        }
+}
+
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                       const Obstacles& obstacles, const Settings& settings) {
+    // The report's simple pillars: each on its own, none standing on another
+    // (that is the scaffold method's business).
     Scaffold out;
     for (std::size_t i = 0; i < points.points.size(); ++i) {
         const auto& p = points.points[i];

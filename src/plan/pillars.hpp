@@ -13,12 +13,29 @@
 
 namespace scaffold::plan {
 
+// The loops of the pillars planned so far, per layer: a new pillar that
+// comes near one steers to it and stands on it (a branch) instead of
+// printing its loops across the other's.
+class Trunks {
+public:
+    struct Loop {
+        double x, y, rc;  // centre and centre-line radius
+    };
+    explicit Trunks(const layers::LayerStack& stack) : at_(stack.layers.size()) {}
+    void add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& settings);
+    const std::vector<Loop>& at(int layer) const { return at_[layer]; }
+
+private:
+    std::vector<std::vector<Loop>> at_;
+};
+
 // A pillar whose top layer is the one beneath `overhang_layer` (less
 // --top-gap-layers), near (x, y), as columns from the bottom up. nullopt when
 // no clear path exists (or it would stand on the model with --buildplate-only).
+// With `trunks`, it may end on one of them (Base::Column).
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
-                                               const Settings& settings);
+                                               const Settings& settings, const Trunks* trunks = nullptr);
 
 // --method pillars: a pillar under every support point.
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,

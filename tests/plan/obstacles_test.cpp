@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "layers/layer_stack.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
@@ -66,4 +68,38 @@ TEST(Obstacles, NoPillarDownThroughAHollowPart) {
             bool inside = c.x0 > 100 && c.x0 < 120 && c.y0 > 100 && c.y0 < 120;
             EXPECT_FALSE(inside) << "column at " << c.x0 << ", " << c.y0;
         }
+}
+
+TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
+    Settings s;
+    layers::LayerStack st;
+    for (int i = 0; i < 100; ++i) {  // 0.2 mm layers to 20 mm, a speck of model far away
+        layers::Layer l;
+        l.z = 0.2 * (i + 1);
+        l.height = 0.2;
+        l.below = i - 1;
+        l.on_bed = i == 0;
+        l.segments.push_back({0, 0, 0.5f, 0, 0.45f, gcode::Role::Perimeter, 0});
+        st.layers.push_back(l);
+    }
+    st.bounds = {-5, -5, 80, 80};
+    const plan::Obstacles obs(st, s);
+    // A pillar to z = 10 at (50, 50), then a point 1.5 mm away over layer 70.
+    auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(trunk);
+    plan::Trunks trunks(st);
+    trunks.add(*trunk, st, s);
+    auto alone = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s);
+    auto branch = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
+    ASSERT_TRUE(alone && branch);
+    EXPECT_EQ(alone->front().base, plan::Base::Bed);
+    EXPECT_EQ(branch->front().base, plan::Base::Column);
+    // It stands on the trunk below the trunk's top, its lowest loop within
+    // the reach of the trunk's loop (0.8 x (0.2 tan 55 + 0.225) mm).
+    const auto& low = branch->front();
+    EXPECT_GT(low.z0, 1.0);
+    EXPECT_LT(low.z0, 10.0 + 1e-6);
+    EXPECT_LT(std::hypot(low.x0 - 50, low.y0 - 50), 0.8 * (0.2 * std::tan(55 * 3.14159265 / 180) + 0.225));
+    // Its top is still where the point needs it.
+    EXPECT_NEAR(branch->back().z1, st.layers[69].z, 1e-6);  // the layer under the point's
 }
