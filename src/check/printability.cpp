@@ -409,11 +409,15 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             // hole of its sparse infill) can never be removed.
             coll &= here.model.filled().dilated(std::max(0.0, o.xy_gap - o.resolution));
             if (coll.any()) {
+                // A cell is a tip when its support ends here or on the next
+                // layer: only cells with support on both layers above count
+                // (one pillar's tip under another's loop two layers up is
+                // still a tip).
                 int above = 0;
                 for (int k = L + 1; k < static_cast<int>(stack.layers.size()) && above < 2; ++k)
                     if (stack.layers[k].z > layer.z + kZEps) {
                         ++above;
-                        if (above == 2) coll &= grids(k).support;
+                        coll &= grids(k).support;
                     }
                 if (above < 2) coll.clear();
                 if (coll.any()) {
