@@ -257,7 +257,13 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 Column c = shape;
                 c.x0 = c.x1 = x + d * std::cos(a);
                 c.y0 = c.y1 = y + d * std::sin(a);
-                if (!descend(c, top_layer, stack, obs, s, path, trunks)) continue;
+                // Leaning towards a trunk can lead into the model further
+                // down: then the plain way down, without trunks.
+                const Column start = c;
+                if (!descend(c, top_layer, stack, obs, s, path, trunks)) {
+                    c = start;
+                    if (!trunks || !descend(c, top_layer, stack, obs, s, path, nullptr)) continue;
+                }
                 if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
                 // Thin pillars only where they stay within the slenderness limit.
                 if (c.radius < proto.radius && c.z1 - c.z0 > 2 * c.radius * s.slenderness) continue;

@@ -293,16 +293,15 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     for (const Active& a : start) planned[a.point] = 1;
     for (int i : canonical_order(points))
         if (!planned[i]) rest.push_back({points.points[i].x, points.points[i].y, points.points[i].z, i});
-    // The remaining points stand on the bed, on the model or, branching, on a
-    // column already planned (a connector or pillar); bridge ends on the bed
-    // or the model only.
+    // The remaining points and the bridge ends stand on the bed, on the model
+    // or, branching, on a column already planned (a connector or pillar).
     Trunks trunks(stack);
     trunks.add(out.columns, stack, s);
     for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
         auto chain = overhang_layer < 0 ? std::nullopt
                                         : drop_pillar(a.x, a.y, overhang_layer, a.point >= 0 ? Top::Contact : Top::Bridge,
-                                                      stack, obs, s, a.point >= 0 ? &trunks : nullptr);
+                                                      stack, obs, s, &trunks);
         if (!chain) {
             if (a.point >= 0) out.dropped_points.push_back(a.point);
             continue;
