@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
         ("method", po::value<std::string>()->default_value("scaffold"),
          "scaffold: bridges and pillars (Dumas et al. 2014); pillars: vertical pillars only; "
          "none: pass the file through unchanged")
-        ("report", po::value<std::string>(), "write a JSON report (points, pillars, bridges, filament, timings) to FILE")
+        ("report", po::value<std::string>(), "write a JSON report (points, pillars, bridges, dropped points with their positions, filament, timings) to FILE")
         ("dump-points", po::value<std::string>(), "write the support points as JSON to FILE")
         ("dump-layers", po::value<std::string>(), "write one SVG per layer with an overhang into DIR")
         ("preview", po::value<std::string>(), "write an SVG picture of the planned scaffold to FILE")
