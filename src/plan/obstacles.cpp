@@ -47,10 +47,11 @@ bool Obstacles::line_clear(int layer, double x0, double y0, double x1, double y1
 
 namespace {
 
-// Calls f(i, j) for every cell whose centre is within r of (x, y); stops
-// early when f returns true. Returns whether it stopped.
+// Calls f(j, i0, i1) for every row j of cells whose centres lie within r of
+// (x, y), i0..i1 being that row's cells in the disc; stops early when f
+// returns true. Returns whether it stopped.
 template <class F>
-bool any_cell_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f) {
+bool any_row_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f) {
     int j0 = g.row(y - r), j1 = g.row(y + r);
     for (int j = j0; j <= j1; ++j) {
         double dy = g.cy(j) - y;
@@ -58,8 +59,7 @@ bool any_cell_in_disc(const layers::BitGrid& g, double x, double y, double r, F&
         double hw = std::sqrt(r * r - dy * dy);
         int i0 = static_cast<int>(std::ceil((x - hw - g.origin_x()) / g.cell() - 0.5));
         int i1 = static_cast<int>(std::floor((x + hw - g.origin_x()) / g.cell() - 0.5));
-        for (int i = i0; i <= i1; ++i)
-            if (f(i, j)) return true;
+        if (f(j, i0, i1)) return true;
     }
     return false;
 }
@@ -118,18 +118,9 @@ bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
     // The planner asks this millions of times: whole rows of the disc a
-    // word at a time (the same cells as any_cell_in_disc visits).
+    // word at a time.
     const layers::BitGrid& g = model_[layer];
-    int j0 = g.row(y - r), j1 = g.row(y + r);
-    for (int j = j0; j <= j1; ++j) {
-        double dy = g.cy(j) - y;
-        if (std::abs(dy) > r) continue;
-        double hw = std::sqrt(r * r - dy * dy);
-        int i0 = static_cast<int>(std::ceil((x - hw - g.origin_x()) / g.cell() - 0.5));
-        int i1 = static_cast<int>(std::floor((x + hw - g.origin_x()) / g.cell() - 0.5));
-        if (any_in_row(g, j, i0, i1)) return false;
-    }
-    return true;
+    return !any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); });
 }
 
 bool Obstacles::column_clear(double x, double y, double r, double z_lo, double z_hi) const {
