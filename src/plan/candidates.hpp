@@ -109,6 +109,9 @@ public:
     std::optional<Candidate> best();
     // Never offer this bridge again (it failed a later check).
     void reject(const Candidate& c);
+    // Whether a pillar can stand under a bridge end at (x, y, z): the model
+    // view's test, asked once per end and remembered.
+    bool end_stands(double x, double y, double z);
 
     // Seeds recomputed so far (for the benchmark).
     long long seed_evaluations() const { return evaluations_; }
@@ -135,7 +138,6 @@ private:
     void mark_around(double x, double y);
     void evaluate(int seed);
     bool bar_clear(double x0, double y0, double x1, double y1, double z);
-    bool end_stands(double x, double y, double z);
 
     const ModelView& model_;
     const Settings& s_;

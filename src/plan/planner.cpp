@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <tuple>
 #include <utility>
@@ -79,16 +78,6 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
     BridgePlan out;
     BridgeSearch search(m, s);
     for (const Active& a : start) search.add(a);
-    // Whether a pillar fits under a bridge end; the same ends come back
-    // with many candidates, so each is asked once.
-    std::map<std::tuple<long, long, long>, bool> stands;
-    auto end_ok = [&](double x, double y, double z) {
-        if (!m.end_stands) return true;
-        auto key = std::make_tuple(std::lround(x * 1000), std::lround(y * 1000), std::lround(z * 1000));
-        auto it = stands.find(key);
-        if (it == stands.end()) it = stands.emplace(key, m.end_stands(x, y, z)).first;
-        return it->second;
-    };
     // Bounded work where the model is in the way everywhere.
     long rejects_left = 20000 + 400 * static_cast<long>(start.size());
     while (auto c = search.best()) {
@@ -98,7 +87,7 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         double l_max = 0;
         // Ends first (cached), then connectors until too many have failed
         // for the gain to stay positive.
-        bool ok = end_ok(c->x0, c->y0, c->z) && end_ok(c->x1, c->y1, c->z);
+        bool ok = search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
         for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
             const int id = c->carried[i];
             if (auto col = connector(*c, search.active(id), m, s)) {
