@@ -7,6 +7,10 @@
 
 namespace scaffold::plan {
 
+double loop_shift_limit(double h, const Settings& s) {
+    return 0.8 * (h * std::tan(s.overhang_angle_deg * std::numbers::pi / 180) + s.support_width / 2);
+}
+
 LoopShape loop_shape(double r, double width) {
     LoopShape shape;
     shape.centre_radius = std::max(r - width / 2, width * 0.25);
@@ -67,10 +71,7 @@ bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, d
 // share of the pillar radius.
 constexpr double kThinFactor = 0.6;
 
-// A trunk holds a loop whose centre line strays from its own by at most
-// this share of (reach + half a bead); a pillar leans towards a trunk whose
-// centre is within kSteer mm.
-constexpr double kHold = 0.8;
+// A pillar leans towards a trunk whose centre is within kSteer mm.
 constexpr double kSteer = 3.0;
 
 // Farthest a pillar may wander sideways while stepping around the model.
@@ -100,9 +101,9 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             // centre line within the reach of the trunk's bead).
             const Step& up = path.back();
             const double rc_up = loop_shape(column_radius_at(proto, up.z, s), s.support_width).centre_radius;
-            const double hold = kHold * (height_above * slope + s.support_width / 2);
+            const double hold = loop_shift_limit(height_above, s);
             for (const Trunks::Loop& o : trunks->at(l))
-                if (std::hypot(o.x - up.x, o.y - up.y) + std::abs(o.rc - rc_up) <= hold) {
+                if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold) {
                     proto.base = Base::Column;
                     proto.z0 = layer.z;
                     return true;
@@ -115,7 +116,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 double d = std::hypot(o.x - cx, o.y - cy);
                 if (d < near_d) { near_d = d; near = &o; }
             }
-            const double step = 0.8 * (layer.height * slope + s.support_width / 2);
+            const double step = loop_shift_limit(layer.height, s);
             if (near && near_d > 1e-9 && wander + step <= kMaxWander) {
                 double k = std::min(step, near_d) / near_d;
                 double nx = cx + (near->x - cx) * k, ny = cy + (near->y - cy) * k;
@@ -131,7 +132,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             // direction with the most room; fixed order breaks ties.
             // A loop may shift by the self-supporting reach plus half its
             // bead and still rest on the one below (its centre line is held).
-            double step = 0.8 * (layer.height * slope + s.support_width / 2);
+            double step = loop_shift_limit(layer.height, s);
             int best = -1;
             for (double margin : {0.4, 0.0}) {
                 for (int k = 0; k < 8 && best < 0; ++k) {

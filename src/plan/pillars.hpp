@@ -3,6 +3,7 @@
 // top surface, kept clear of the model by the XY gap on every layer. Where
 // the model bulges out below, the pillar steps aside a little per layer (no
 // more than the overhang angle allows), so it becomes a chain of columns.
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -53,6 +54,17 @@ struct LoopShape {
     int sides = 8;
 };
 LoopShape loop_shape(double r, double width);
+
+// How far a loop's centre line may stray from the loop printed under it
+// (on a layer of height h) and still rest on it: the self-supporting reach
+// plus half a bead, less a fifth for the polygon's chords and the raster.
+double loop_shift_limit(double h, const Settings& settings);
+
+// The most two loops' centre lines stray from each other: centre distance
+// plus the difference of their centre-line radii.
+inline double loops_apart(double x0, double y0, double rc0, double x1, double y1, double rc1) {
+    return std::hypot(x1 - x0, y1 - y0) + std::abs(rc1 - rc0);
+}
 
 // Centre of a column at height z (linear between its ends).
 inline void column_centre_at(const Column& c, double z, double& x, double& y) {

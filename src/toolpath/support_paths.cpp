@@ -29,10 +29,6 @@ constexpr double kZEps = 1e-6;
 // already printed on the layer retraces it.
 constexpr double kRetrace = 0.2;
 
-// Share of (reach + half a bead) within which a printed ring holds another
-// column's loop on the next layer: the margin covers the polygon's chords.
-constexpr double kHeld = 0.8;
-
 struct Square {
     double x, y, half;
     bool overlaps(const Square& o) const { return std::abs(x - o.x) < half + o.half && std::abs(y - o.y) < half + o.half; }
@@ -89,7 +85,6 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                         const plan::Obstacles* obstacles) {
     SupportPaths out;
     const double w = s.support_width;
-    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     // The layer printed next above each layer (-1 for the top).
     std::vector<int> next(stack.layers.size(), -1);
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l)
@@ -115,8 +110,8 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         for (const plan::Column& c : scaffold.columns) {
             if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             // A column whose base is on the bed starts on the first layer.
-            double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;
-            double cx = c.x0 + (c.x1 - c.x0) * t, cy = c.y0 + (c.y1 - c.y0) * t;
+            double cx, cy;
+            plan::column_centre_at(c, z, cx, cy);
             double r = plan::column_radius_at(c, z, s);
             if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0) {
                 Square sq{cx, cy, c.raft_size / 2};
@@ -130,10 +125,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             if (first_layer && std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.contains({cx, cy, r}); }))
                 continue;
             const double rc = plan::loop_shape(r, w).centre_radius;
-            // How far a ring's centre line strays from another's at most.
-            auto apart = [](const Ring& o, double x, double y, double rc_) {
-                return std::hypot(o.x - x, o.y - y) + std::abs(o.rc - rc_);
-            };
+            auto apart = [](const Ring& o, double x, double y, double rc_) { return plan::loops_apart(o.x, o.y, o.rc, x, y, rc_); };
             if (std::any_of(rings.begin(), rings.end(), [&](const Ring& o) { return apart(o, cx, cy, rc) <= kRetrace * w; }))
                 continue;
             // A loop mostly on top of one already printed on this layer is
@@ -143,10 +135,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // two crossing ones. Never a column's top two layers (its tip).
             if (next[l] >= 0 && c.z1 > stack.layers[next[l]].z + kZEps) {
                 const double z2 = stack.layers[next[l]].z;
-                const double t2 = c.z1 > c.z0 ? (z2 - c.z0) / (c.z1 - c.z0) : 1.0;
-                const double cx2 = c.x0 + (c.x1 - c.x0) * t2, cy2 = c.y0 + (c.y1 - c.y0) * t2;
+                double cx2, cy2;
+                plan::column_centre_at(c, z2, cx2, cy2);
                 const double rc2 = plan::loop_shape(plan::column_radius_at(c, z2, s), w).centre_radius;
-                const double hold = kHeld * (stack.layers[next[l]].height * slope + w / 2);
+                const double hold = plan::loop_shift_limit(stack.layers[next[l]].height, s);
                 if (c.z1 > z2 + stack.layers[next[l]].height + kZEps &&
                     std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
                         return apart(o, cx, cy, rc) <= hold && apart(o, cx2, cy2, rc2) <= hold;
