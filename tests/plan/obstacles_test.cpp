@@ -5,6 +5,7 @@
 #include "layers/layer_stack.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "support/stacks.hpp"
 
 using namespace scaffold;
 
@@ -72,17 +73,8 @@ TEST(Obstacles, NoPillarDownThroughAHollowPart) {
 
 TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
     Settings s;
-    layers::LayerStack st;
-    for (int i = 0; i < 100; ++i) {  // 0.2 mm layers to 20 mm, a speck of model far away
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        l.segments.push_back({0, 0, 0.5f, 0, 0.45f, gcode::Role::Perimeter, 0});
-        st.layers.push_back(l);
-    }
-    st.bounds = {-5, -5, 80, 80};
+    // 0.2 mm layers to 20 mm, a speck of model far away.
+    const layers::LayerStack st = test::empty_stack(20, 80);
     const plan::Obstacles obs(st, s);
     // A pillar to z = 10 at (50, 50), then a point 1.5 mm away over layer 70.
     auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);

@@ -11,6 +11,7 @@
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
 #include "plan/planner.hpp"
+#include "support/stacks.hpp"
 
 using namespace scaffold;
 
@@ -77,22 +78,7 @@ void expect_same(const plan::Scaffold& a, const plan::Scaffold& b) {
     EXPECT_EQ(a.dropped_points, b.dropped_points);
 }
 
-// 0.2 mm layers up to `top` with a speck of model far away, for the real Obstacles.
-layers::LayerStack empty_stack(double top) {
-    layers::LayerStack st;
-    int n = static_cast<int>(std::lround(top / 0.2));
-    for (int i = 0; i < n; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        l.segments.push_back({0, 0, 0.5f, 0, 0.45f, gcode::Role::Perimeter, 0});
-        st.layers.push_back(l);
-    }
-    st.bounds = {-5, -5, 60, 60};
-    return st;
-}
+using test::empty_stack;
 
 const std::vector<Xyz> kReportPoints{{18, 24, 17}, {11, 15, 20}, {19, 9, 15}, {25, 20, 18}};
 
