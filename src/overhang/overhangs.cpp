@@ -279,10 +279,12 @@ int find_root(std::vector<int>& parent, int k) {
     return k;
 }
 
-// Area of the chain each region belongs to: regions are chained when one
-// continues the other from a layer just below (union-find over pairs that
-// pass a bounding-box test, then a cell-distance test).
-std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::BitGrid& g, double layer_height) {
+// Whether each region counts: regions are chained when one continues the
+// other from a layer just below (union-find over pairs that pass a
+// bounding-box test, then a cell-distance test); a chain over two or more
+// layers always counts, a lone region from `min_area` mm^2 up.
+std::vector<char> kept_regions(const std::vector<Region>& rs, const layers::BitGrid& g, double layer_height,
+                               double min_area) {
     const int n = static_cast<int>(rs.size());
     std::vector<int> parent(n);
     for (int k = 0; k < n; ++k) parent[k] = k;
@@ -318,8 +320,11 @@ std::vector<double> chain_areas(const std::vector<Region>& rs, const layers::Bit
         sum[find_root(parent, k)] += static_cast<double>(rs[k].cells.size()) * g.cell_area();
         members[find_root(parent, k)]++;
     }
-    std::vector<double> out(n);
-    for (int k = 0; k < n; ++k) out[k] = members[find_root(parent, k)] >= 2 ? 1e9 : sum[find_root(parent, k)];
+    std::vector<char> out(n);
+    for (int k = 0; k < n; ++k) {
+        const int root = find_root(parent, k);
+        out[k] = members[root] >= 2 || sum[root] >= min_area;
+    }
     return out;
 }
 
@@ -447,14 +452,14 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
     Overhangs out;
     const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
     const std::vector<Region> found = find_regions(stack, s, proto);
-    // Drop specks: overhangs smaller than the minimum area, judged over the
-    // whole chain of regions that continue one another from layer to layer,
-    // not per layer. A steep slope overhangs by a sliver on every layer;
+    // Drop specks: lone regions smaller than the minimum area. Judged over
+    // the chain of regions that continue one another from layer to layer,
+    // not per layer: a steep slope overhangs by a sliver on every layer;
     // each sliver is tiny but together they are a real overhang.
-    const std::vector<double> chain_area = chain_areas(found, proto, s.layer_height);
+    const std::vector<char> kept = kept_regions(found, proto, s.layer_height, s.min_overhang_area);
     const double cell_area = proto.cell_area();
     for (std::size_t k = 0; k < found.size(); ++k) {
-        if (chain_area[k] < s.min_overhang_area) continue;
+        if (!kept[k]) continue;
         const Region& r = found[k];
         if (out.layers.empty() || out.layers.back().layer != r.layer) {
             OverhangLayer ol;
