@@ -71,9 +71,6 @@ bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, d
 // share of the pillar radius.
 constexpr double kThinFactor = 0.6;
 
-// A pillar leans towards a trunk whose centre is within kSteer mm.
-constexpr double kSteer = 3.0;
-
 // Farthest a pillar may wander sideways while stepping around the model.
 constexpr double kMaxWander = 15.0;
 
@@ -111,7 +108,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             // Otherwise lean towards the nearest trunk within reach, as far
             // as a loop may shift on the one below.
             const Trunks::Loop* near = nullptr;
-            double near_d = kSteer;
+            double near_d = trunks->steer();
             for (const Trunks::Loop& o : trunks->at(l)) {
                 double d = std::hypot(o.x - cx, o.y - cy);
                 if (d < near_d) { near_d = d; near = &o; }
@@ -300,21 +297,32 @@ void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& sta
 
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                       const Obstacles& obstacles, const Settings& settings) {
-    // The report's simple pillars: each on its own, none standing on another
-    // (that is the scaffold method's business).
+    // The report's simple pillars: vertical, no bridges, no leaning. Where a
+    // pillar's straight way down meets a pillar already planned whose loop
+    // holds its own, it stands on it: on a slope every layer's sliver gets a
+    // point a fraction of a millimetre from the last, and pillars side by
+    // side would print the same ring many times over. Lower points first,
+    // so the higher stand on the lower.
+    std::vector<int> order(points.points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return points.points[a].layer < points.points[b].layer; });
+    Trunks trunks(stack, 0.0);
     Scaffold out;
-    for (std::size_t i = 0; i < points.points.size(); ++i) {
+    for (int i : order) {
         const auto& p = points.points[i];
-        auto chain = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings);
+        auto chain = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings, &trunks);
         if (!chain) {
-            out.dropped_points.push_back(static_cast<int>(i));
+            out.dropped_points.push_back(i);
             continue;
         }
+        trunks.add(*chain, stack, settings);
         for (Column& c : *chain) {
-            c.point = static_cast<int>(i);
+            c.point = i;
             out.columns.push_back(c);
         }
     }
+    std::sort(out.dropped_points.begin(), out.dropped_points.end());
     return out;
 }
 

@@ -14,21 +14,26 @@
 
 namespace scaffold::plan {
 
-// The loops of the pillars planned so far, per layer: a new pillar that
-// comes near one steers to it and stands on it (a branch) instead of
-// printing its loops across the other's.
+// The loops of the pillars planned so far, per layer: a new pillar whose
+// loop one of them holds stands on it instead of printing its loops across
+// the other's; within `steer` mm of one it leans towards it (a branch).
 class Trunks {
 public:
     struct Loop {
         double x, y, rc;  // centre and centre-line radius
     };
-    explicit Trunks(const layers::LayerStack& stack) : at_(stack.layers.size()) {}
+    Trunks(const layers::LayerStack& stack, double steer) : at_(stack.layers.size()), steer_(steer) {}
     void add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& settings);
     const std::vector<Loop>& at(int layer) const { return at_[layer]; }
+    double steer() const { return steer_; }
 
 private:
     std::vector<std::vector<Loop>> at_;
+    double steer_;
 };
+
+// How far a scaffold's pillar reaches sideways for a trunk to branch off.
+inline constexpr double kBranchSteer = 3.0;
 
 // A pillar whose top layer is the one beneath `overhang_layer` (less
 // --top-gap-layers), near (x, y), as columns from the bottom up. nullopt when

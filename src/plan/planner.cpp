@@ -284,7 +284,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         if (!planned[i]) rest.push_back({points.points[i].x, points.points[i].y, points.points[i].z, i});
     // The remaining points and the bridge ends stand on the bed, on the model
     // or, branching, on a column already planned (a connector or pillar).
-    Trunks trunks(stack);
+    Trunks trunks(stack, kBranchSteer);
     trunks.add(out.columns, stack, s);
     for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);

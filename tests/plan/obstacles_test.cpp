@@ -79,7 +79,7 @@ TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
     // A pillar to z = 10 at (50, 50), then a point 1.5 mm away over layer 70.
     auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
     ASSERT_TRUE(trunk);
-    plan::Trunks trunks(st);
+    plan::Trunks trunks(st, plan::kBranchSteer);
     trunks.add(*trunk, st, s);
     auto alone = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s);
     auto branch = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
@@ -94,4 +94,28 @@ TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
     EXPECT_LT(std::hypot(low.x0 - 50, low.y0 - 50), 0.8 * (0.2 * std::tan(55 * 3.14159265 / 180) + 0.225));
     // Its top is still where the point needs it.
     EXPECT_NEAR(branch->back().z1, st.layers[69].z, 1e-6);  // the layer under the point's
+}
+
+TEST(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(20, 80);
+    const plan::Obstacles obs(st, s);
+    auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(trunk);
+    plan::Trunks trunks(st, 0.0);
+    trunks.add(*trunk, st, s);
+    // 1.5 mm away: its own way to the bed, straight down.
+    auto apart = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
+    ASSERT_TRUE(apart);
+    EXPECT_EQ(apart->front().base, plan::Base::Bed);
+    for (const auto& c : *apart) EXPECT_EQ(c.x0, 51.5);
+    // 0.2 mm off the trunk's axis, one layer over its tip: it stands on the
+    // tip, a column of one layer, vertical.
+    auto above = plan::drop_pillar(50.2, 50, 51, plan::Top::Contact, st, obs, s, &trunks);
+    ASSERT_TRUE(above);
+    ASSERT_EQ(above->size(), 1u);
+    EXPECT_EQ(above->front().base, plan::Base::Column);
+    EXPECT_NEAR(above->front().z0, st.layers[49].z, 1e-6);
+    EXPECT_EQ(above->front().x0, 50.2);
+    EXPECT_EQ(above->front().x1, 50.2);
 }
