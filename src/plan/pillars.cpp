@@ -90,7 +90,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(proto, layer.z, s);
         // Only the contact itself (the top two layers) may come close to the model.
-        bool tip = proto.top == Top::Contact && layer.z > proto.contact_z - 2 * s.layer_height + 1e-6;
+        bool tip = proto.top == Top::Contact && in_contact(proto, layer.z, s.layer_height);
         double need = r + (tip ? kTipClearance : s.xy_gap);
         bool first = path.empty();
         if (trunks && !first && !trunks->at(l).empty()) {

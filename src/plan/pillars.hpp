@@ -47,6 +47,13 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                       const Obstacles& obstacles, const Settings& settings);
 
+// Whether height z is in a column's contact: its top two layers, which may
+// come closer to the model than the XY gap. Half a layer of slack, not a
+// hair: layer heights are floats, and 33.6f - 0.4 is not above 33.2f.
+inline bool in_contact(const Column& c, double z, double layer_height) {
+    return c.contact_z > 0 && z > c.contact_z - 1.5 * layer_height;
+}
+
 // Radius of a column at height z (tip taper, foot flare, base radius).
 double column_radius_at(const Column& c, double z, const Settings& settings);
 

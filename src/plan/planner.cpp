@@ -46,7 +46,7 @@ std::optional<Column> connector_to(const Candidate& b, const Active& a, double t
         if (!m.disc_clear) continue;
         double x, y;
         column_centre_at(c, z, x, y);
-        bool tip = c.contact_z > 0 && z > c.contact_z - 2 * s.layer_height + 1e-6;
+        bool tip = in_contact(c, z, s.layer_height);
         if (!m.disc_clear(z, x, y, column_radius_at(c, z, s) + (tip ? kTipClearance : s.xy_gap))) return std::nullopt;
     }
     return c;

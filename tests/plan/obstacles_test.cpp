@@ -119,3 +119,34 @@ TEST(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
     EXPECT_EQ(above->front().x0, 50.2);
     EXPECT_EQ(above->front().x1, 50.2);
 }
+
+TEST(PlanPillars, PointsStackedUpASlopeShareOneColumn) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(20, 80);
+    const plan::Obstacles obs(st, s);
+    // A slope's edge: a point on each of ten layers, 0.1 mm further out each
+    // time (as a sliver per layer gives). Listed top first: the planner must
+    // still put the lower first.
+    overhang::SupportPoints pts;
+    for (int k = 9; k >= 0; --k)
+        pts.points.push_back({50 + 0.1 * k, 50, st.layers[39 + k].z, 40 + k});
+    const plan::Scaffold plan = plan::plan_pillars(pts, st, obs, s);
+    EXPECT_TRUE(plan.dropped_points.empty());
+    int on_bed = 0;
+    for (const auto& c : plan.columns) {
+        on_bed += c.base == plan::Base::Bed;
+        EXPECT_EQ(c.x0, c.x1);  // simple pillars do not lean
+    }
+    EXPECT_EQ(on_bed, 1);
+    EXPECT_EQ(plan.columns.size(), 10u);
+}
+
+TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
+    plan::Column c;
+    c.contact_z = 33.6f;  // 33.599998
+    EXPECT_TRUE(plan::in_contact(c, 33.6f, 0.2));
+    EXPECT_TRUE(plan::in_contact(c, 33.4f, 0.2));
+    EXPECT_FALSE(plan::in_contact(c, 33.2f, 0.2));  // 33.200001: once taken for the contact
+    c.contact_z = 0;  // under a bridge end with no tip
+    EXPECT_FALSE(plan::in_contact(c, 33.6f, 0.2));
+}
