@@ -57,8 +57,10 @@ struct BridgeSearch::Scratch {
     struct Near {
         double du, adv, t, w;  // along, |across|, highest bar that carries it, across + its z
         int id;
+        int miss0 = 0, miss1 = 0;  // heights no bar on this line carries it: miss_z[miss0, miss1)
     };
     std::vector<Near> pts;
+    std::vector<double> miss_z;
     std::vector<int> hits, left, right, reach, gbeg, gend, count, by_t;
     std::vector<double> heights, wl, wr, ws;
 };
@@ -101,6 +103,7 @@ int BridgeSearch::add(const Active& a) {
     int id = size();
     points_.push_back(a);
     alive_.push_back(1);
+    misses_.emplace_back();
     seeds_.resize(seeds_.size() + static_cast<std::size_t>(s_.sweep_directions));
     index_->tree.insert({Index::Point(a.x, a.y), id});
     mark_around(a.x, a.y);  // its own seeds, and those whose window it enters
@@ -164,6 +167,14 @@ bool BridgeSearch::end_stands(double x, double y, double z) {
     return ok;
 }
 
+void BridgeSearch::no_connector(int id, const Candidate& c) {
+    const int D = s_.sweep_directions;
+    const int k = c.seed % D;
+    const Active& q = points_[c.seed / D];
+    const double th = k * std::numbers::pi / D;
+    misses_[id].push_back({k, -q.x * std::sin(th) + q.y * std::cos(th), c.z});
+}
+
 // The best bridge on the sweep line of direction k through point id, among
 // those whose span contains the point. The line meets the anchoring segment
 // (5 mm either side, along the sweep) of every point in the band, at the
@@ -189,6 +200,7 @@ void BridgeSearch::evaluate(int seed) {
     Scratch& sc = *scratch_;
     std::vector<Near>& pts = sc.pts;
     pts.clear();
+    sc.miss_z.clear();
     index_->in_box(q.x - hx, q.y - hy, q.x + hx, q.y + hy, sc.hits);
     for (int p : sc.hits) {
         const Active& a = points_[p];
@@ -197,8 +209,19 @@ void BridgeSearch::evaluate(int seed) {
         // Carried when at least the drop above the bar, and its connector
         // from the bar's top leans no more than printable.
         double t = std::min(a.z - s_.bridge_min_drop, a.z - kBarThickness - adv / lean_per_mm);
-        pts.push_back({du, adv, t, adv + a.z, p});
+        const int m0 = static_cast<int>(sc.miss_z.size());
+        for (const Miss& ms : misses_[p])
+            if (ms.direction == k && std::abs(ms.v - vq) < kEps) sc.miss_z.push_back(ms.z);
+        pts.push_back({du, adv, t, adv + a.z, p, m0, static_cast<int>(sc.miss_z.size())});
     }
+    // Whether a bar at height z on this line carries pts[i].
+    auto carries = [&](int i, double z) {
+        const Near& p = pts[i];
+        if (p.t < z - kEps) return false;
+        for (int m = p.miss0; m < p.miss1; ++m)
+            if (std::abs(sc.miss_z[m] - z) < kEps) return false;
+        return true;
+    };
     const int n = static_cast<int>(pts.size());
     if (n < 3) return;
     // Along the line, ties by id: not by the tree's order, which depends on its history.
@@ -257,7 +280,7 @@ void BridgeSearch::evaluate(int seed) {
         kk = 0;
         wmax = 0;
         for (int i = a; i <= b; ++i)
-            if (pts[i].t >= z - kEps) {
+            if (carries(i, z)) {
                 ++kk;
                 wmax = std::max(wmax, pts[i].w);
             }
@@ -277,7 +300,7 @@ void BridgeSearch::evaluate(int seed) {
         best.end1 = pts[b].id;
         best.carried.clear();
         for (int i = a; i <= b; ++i)
-            if (pts[i].t >= z - kEps) best.carried.push_back(pts[i].id);
+            if (carries(i, z)) best.carried.push_back(pts[i].id);
         std::sort(best.carried.begin(), best.carried.end());
         has = true;
     };
@@ -318,17 +341,17 @@ void BridgeSearch::evaluate(int seed) {
             }
             if (bound <= best.score) continue;
         }
-        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + (pts[i].t >= z - kEps);
+        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + carries(i, z);
         // wl[a]: largest w carried in [a..a_max]; wr[b]: in [b_min..b]; the
         // two overlap only on points at du = 0, so together they cover [a..b].
         double m = 0;
         for (int i = a_max; i >= 0; --i) {
-            if (pts[i].t >= z - kEps) m = std::max(m, pts[i].w);
+            if (carries(i, z)) m = std::max(m, pts[i].w);
             wl[i] = m;
         }
         m = 0;
         for (int i = b_min; i < n; ++i) {
-            if (pts[i].t >= z - kEps) m = std::max(m, pts[i].w);
+            if (carries(i, z)) m = std::max(m, pts[i].w);
             wr[i] = m;
         }
         // With k carried, largest w at least W and length at least len, a
@@ -362,16 +385,17 @@ void BridgeSearch::evaluate(int seed) {
                 double wmax = std::max(wl[a], wr[b]);
                 if (has && cap(std::max(kk, 3), k_all, wmax, len) <= best.score) break;
                 if (kk < 3) continue;
+                // The score first: it is arithmetic, the tests below look bars up.
+                double gain = bridge_gain(kk, z, len);
+                if (gain <= 0) continue;
+                double score = bridge_score(gain, kk, wmax - z);
+                if (has && score <= best.score) continue;
                 if (a_in >= 0 && pts[b].du - pts[a_in].du >= s_.bridge_min_length - kEps && !rejected_span(a_in, b))
                     continue;
                 if (ib > 0 && count[b + 1] == count[gbeg[b]]) {
                     int b_in = right[ib - 1];
                     if (pts[b_in].du - pts[a].du >= s_.bridge_min_length - kEps && !rejected_span(a, b_in)) continue;
                 }
-                double gain = bridge_gain(kk, z, len);
-                if (gain <= 0) continue;
-                double score = bridge_score(gain, kk, wmax - z);
-                if (has && score <= best.score) continue;
                 if (usable(a, b, z)) {
                     take(a, b, z, kk, wmax);
                     continue;

@@ -94,6 +94,8 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
                 connectors.push_back(*col);
                 carried.push_back(id);
                 l_max = std::max(l_max, std::hypot(col->x1 - col->x0, col->y1 - col->y0) + col->z1 - c->z);
+            } else {
+                search.no_connector(id, *c);
             }
             int most = static_cast<int>(carried.size() + c->carried.size() - i - 1);
             ok = bridge_gain(most, c->z, len) > 0;

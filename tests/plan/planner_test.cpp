@@ -399,3 +399,28 @@ TEST(PlannerSearch, IncrementalSearchAgreesWithAFreshOneAtEveryStep) {
     }
     EXPECT_GT(steps, 15);
 }
+
+TEST(PlannerSearch, APointNoConnectorReachesIsNoLongerCountedOnThatLine) {
+    // Four points on the line y = 10, 4 mm apart: the best bar carries all
+    // four. Once no connector reaches point 1 from it, no bar on that line at
+    // that height may count point 1 again (without the rule the spans 10-18
+    // and 14-22 would, one rejection after another).
+    Settings s;
+    const plan::ModelView m = free_space();
+    plan::BridgeSearch search(m, s);
+    for (int i = 0; i < 4; ++i) search.add({10.0 + 4 * i, 10, 20, i});
+    auto first = search.best();
+    ASSERT_TRUE(first);
+    ASSERT_EQ(first->carried.size(), 4u);
+    search.no_connector(1, *first);
+    search.reject(*first);
+    int offered = 0;
+    while (auto c = search.best()) {
+        const bool on_line = std::abs(c->y0 - 10) < 1e-9 && std::abs(c->y1 - 10) < 1e-9;
+        if (on_line && std::abs(c->z - first->z) < 1e-9)
+            EXPECT_EQ(std::count(c->carried.begin(), c->carried.end(), 1), 0) << c->x0 << " - " << c->x1;
+        search.reject(*c);
+        ASSERT_LT(++offered, 200);
+    }
+    EXPECT_GT(offered, 0);  // the lower bars were still offered
+}
