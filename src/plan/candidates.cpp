@@ -305,13 +305,18 @@ void BridgeSearch::evaluate(int seed) {
         has = true;
     };
     const bool eager = sd.blocked >= kLazyBars;
-    auto usable = [&](int a, int b, double z) {
+    // `blocked` is set when the model blocks the bar itself.
+    auto usable = [&](int a, int b, double z, bool& blocked) {
         double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
         double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
+        blocked = false;
         // The bar before the ends when the bar is tested here at all: a
         // blocked bar spares the pillar searches under its ends.
         if (rejected_.count(key_of(x0, y0, x1, y1, z))) return false;
-        if (eager && !bar_clear(x0, y0, x1, y1, z)) return false;
+        if (eager && !bar_clear(x0, y0, x1, y1, z)) {
+            blocked = true;
+            return false;
+        }
         return end_stands(x0, y0, z) && end_stands(x1, y1, z);
     };
 
@@ -370,6 +375,11 @@ void BridgeSearch::evaluate(int seed) {
             double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
             return rejected_.count(key_of(x0, y0, x1, y1, z)) > 0;
         };
+        // A bar over a blocked one is blocked too: at this height, with the
+        // left ends taken outwards, every bar reaching right to
+        // blocked_from or beyond contains a bar found blocked (eager seeds
+        // would otherwise look up thousands of such bars one by one).
+        double blocked_from = std::numeric_limits<double>::infinity();
         for (std::size_t ia = 0; ia < left.size(); ++ia) {
             const int a = left[ia];
             const int k_all = count[reach[a] + 1] - count[a];  // the most a span from a can carry
@@ -396,10 +406,12 @@ void BridgeSearch::evaluate(int seed) {
                     int b_in = right[ib - 1];
                     if (pts[b_in].du - pts[a].du >= s_.bridge_min_length - kEps && !rejected_span(a, b_in)) continue;
                 }
-                if (usable(a, b, z)) {
+                bool blocked = eager && pts[b].du >= blocked_from;
+                if (!blocked && usable(a, b, z, blocked)) {
                     take(a, b, z, kk, wmax);
                     continue;
                 }
+                if (blocked) blocked_from = std::min(blocked_from, pts[b].du);
                 // Blocked (by the model or a failed check): the same span a few steps lower.
                 for (int j = 1; j < kLowerHeights; ++j) {
                     double z2 = model_.snap_down(z - j * s_.bridge_height_step);
@@ -410,7 +422,8 @@ void BridgeSearch::evaluate(int seed) {
                     double g2 = bridge_gain(k2, z2, len);
                     if (g2 <= 0) continue;
                     if (has && bridge_score(g2, k2, w2 - z2) <= best.score) continue;
-                    if (usable(a, b, z2)) {
+                    bool blocked2;
+                    if (usable(a, b, z2, blocked2)) {
                         take(a, b, z2, k2, w2);
                         break;
                     }
