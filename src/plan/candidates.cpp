@@ -1,6 +1,7 @@
 #include "plan/candidates.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -380,6 +381,8 @@ void BridgeSearch::evaluate(int seed) {
         // blocked_from or beyond contains a bar found blocked (eager seeds
         // would otherwise look up thousands of such bars one by one).
         double blocked_from = std::numeric_limits<double>::infinity();
+        std::array<double, kLowerHeights> blocked_lower;  // the same for each retry height below
+        blocked_lower.fill(std::numeric_limits<double>::infinity());
         for (std::size_t ia = 0; ia < left.size(); ++ia) {
             const int a = left[ia];
             const int k_all = count[reach[a] + 1] - count[a];  // the most a span from a can carry
@@ -422,11 +425,12 @@ void BridgeSearch::evaluate(int seed) {
                     double g2 = bridge_gain(k2, z2, len);
                     if (g2 <= 0) continue;
                     if (has && bridge_score(g2, k2, w2 - z2) <= best.score) continue;
-                    bool blocked2;
-                    if (usable(a, b, z2, blocked2)) {
+                    bool blocked2 = eager && pts[b].du >= blocked_lower[j];
+                    if (!blocked2 && usable(a, b, z2, blocked2)) {
                         take(a, b, z2, k2, w2);
                         break;
                     }
+                    if (blocked2) blocked_lower[j] = std::min(blocked_lower[j], pts[b].du);
                 }
             }
         }
