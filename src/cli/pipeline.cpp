@@ -171,6 +171,8 @@ void run(const Request& req, spdlog::logger& log) {
              points.points.size(), scaffold.bridges.size(), pillars,
              scaffold.dropped_points.empty() ? "" : fmt::format(", {} points dropped", scaffold.dropped_points.size()),
              spliced.filament_mm, grams, model_mm > 0 ? 100 * spliced.filament_mm / model_mm : 0.0, time_change);
+    for (const plan::Xyz& e : scaffold.unheld_bridge_ends)
+        log.warn("a bridge end at ({:.2f}, {:.2f}, z {:.2f}) has no pillar under it: check that bridge", e.x, e.y, e.z);
     for (const auto& [name, s] : time.stages) log.debug("stage {}: {:.1f} ms", name, s * 1000);
 
     if (auto it = req.files.find("report"); it != req.files.end()) {
@@ -190,6 +192,12 @@ void run(const Request& req, spdlog::logger& log) {
             const auto& p = points.points[scaffold.dropped_points[i]];
             j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}, \"layer\": {}}}", i ? ", " : "", p.x, p.y, p.z,
                              p.layer);
+        }
+        j += "],\n";
+        j += "  \"unheld_bridge_ends\": [";
+        for (std::size_t i = 0; i < scaffold.unheld_bridge_ends.size(); ++i) {
+            const plan::Xyz& e = scaffold.unheld_bridge_ends[i];
+            j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", e.x, e.y, e.z);
         }
         j += "],\n";
         j += "  \"support_filament_mm\": " + fixed(spliced.filament_mm, 2) + ",\n";

@@ -295,6 +295,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
                                                       stack, obs, s, &trunks);
         if (!chain) {
             if (a.point >= 0) out.dropped_points.push_back(a.point);
+            else out.unheld_bridge_ends.push_back({a.x, a.y, a.z});
             continue;
         }
         trunks.add(*chain, stack, s);

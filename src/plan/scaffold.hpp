@@ -33,10 +33,17 @@ struct Bridge {
     double gain = 0, score = 0;
 };
 
+struct Xyz {
+    double x = 0, y = 0, z = 0;
+};
+
 struct Scaffold {
     std::vector<Column> columns;
     std::vector<Bridge> bridges;
     std::vector<int> dropped_points;  // could not be supported (e.g. --buildplate-only)
+    // Bridge ends no pillar reached. Never seen: a bar is a candidate only
+    // where a pillar stands under both ends; reported, should it happen.
+    std::vector<Xyz> unheld_bridge_ends;
 };
 
 }  // namespace scaffold::plan

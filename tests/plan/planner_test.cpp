@@ -417,8 +417,9 @@ TEST(PlannerSearch, APointNoConnectorReachesIsNoLongerCountedOnThatLine) {
     int offered = 0;
     while (auto c = search.best()) {
         const bool on_line = std::abs(c->y0 - 10) < 1e-9 && std::abs(c->y1 - 10) < 1e-9;
-        if (on_line && std::abs(c->z - first->z) < 1e-9)
+        if (on_line && std::abs(c->z - first->z) < 1e-9) {
             EXPECT_EQ(std::count(c->carried.begin(), c->carried.end(), 1), 0) << c->x0 << " - " << c->x1;
+        }
         search.reject(*c);
         ASSERT_LT(++offered, 200);
     }
