@@ -4,6 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+// Boost.Geometry's rescaling trips GCC's maybe-uninitialized analysis.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <boost/geometry.hpp>
+#pragma GCC diagnostic pop
+
 #include "plan/pillars.hpp"
 
 namespace scaffold::toolpath {
@@ -57,6 +63,75 @@ Path raft(double cx, double cy, double size, double width, double speed) {
     return p;
 }
 
+namespace bg = boost::geometry;
+using BgPoint = bg::model::d2::point_xy<double>;
+using BgPolygon = bg::model::polygon<BgPoint>;
+using BgMulti = bg::model::multi_polygon<BgPolygon>;
+
+int find_root(std::vector<int>& parent, int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+}
+
+// Loops on one layer whose centre lines cross (pillars standing closer than
+// their diameter) are printed as the outline of their union, one path
+// instead of two crossing ones: nothing is extruded twice, and the merged
+// column is a hollow column of that outline on every layer it stays merged
+// (what lies inside it is the filled footprint that holds the next layer).
+// A loop inside another is left alone: the column above may stand on it.
+// `loops` are the indices in `paths` of the single-wall loops, with their
+// rings.
+void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<std::size_t, Ring>>& loops) {
+    const int n = static_cast<int>(loops.size());
+    if (n < 2) return;
+    std::vector<int> parent(n);
+    for (int k = 0; k < n; ++k) parent[k] = k;
+    bool any = false;
+    for (int a = 0; a < n; ++a)
+        for (int b = a + 1; b < n; ++b) {
+            const Ring &p = loops[a].second, &q = loops[b].second;
+            const double d = std::hypot(p.x - q.x, p.y - q.y);
+            if (d < p.rc + q.rc - 1e-6 && d > std::abs(p.rc - q.rc) + 1e-6) {
+                parent[find_root(parent, b)] = find_root(parent, a);
+                any = true;
+            }
+        }
+    if (!any) return;
+    std::vector<std::vector<int>> groups(n);
+    for (int k = 0; k < n; ++k) groups[find_root(parent, k)].push_back(k);
+    std::vector<char> drop(paths.size(), 0);
+    std::vector<Path> merged;
+    for (const std::vector<int>& g : groups) {
+        if (g.size() < 2) continue;
+        BgMulti all;
+        for (int k : g) {
+            BgPolygon poly;
+            for (const Point& pt : paths[loops[k].first].points) poly.outer().push_back({pt.x, pt.y});
+            bg::correct(poly);
+            BgMulti next;
+            bg::union_(all, poly, next);
+            all = std::move(next);
+        }
+        const Path& proto = paths[loops[g.front()].first];
+        for (int k : g) drop[loops[k].first] = 1;
+        for (const BgPolygon& poly : all) {
+            auto add = [&](const auto& ring) {
+                Path p = proto;
+                p.points.clear();
+                for (const BgPoint& pt : ring) p.points.push_back({pt.x(), pt.y()});
+                if (p.points.size() >= 4) merged.push_back(std::move(p));
+            };
+            add(poly.outer());
+            for (const auto& hole : poly.inners()) add(hole);
+        }
+    }
+    std::vector<Path> kept;
+    for (std::size_t i = 0; i < paths.size(); ++i)
+        if (!drop[i]) kept.push_back(std::move(paths[i]));
+    for (Path& p : merged) kept.push_back(std::move(p));
+    paths = std::move(kept);
+}
+
 // Nearest-first order from the previous path's end; ties keep the input order.
 void order_paths(std::vector<Path>& paths) {
     if (paths.size() < 3) return;
@@ -107,6 +182,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         // too, and on the first layer the raft replaces the loop on it.
         std::vector<Square> rafts;
         std::vector<Ring> rings;
+        std::vector<std::pair<std::size_t, Ring>> single_loops;  // path index, ring
         for (const plan::Column& c : scaffold.columns) {
             if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             // A column whose base is on the bed starts on the first layer.
@@ -158,8 +234,11 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 Path inner = lp.paths.back();
                 inner.points = loop(cx, cy, r - w * 0.9, w);
                 lp.paths.push_back(std::move(inner));
+            } else {
+                single_loops.push_back({lp.paths.size() - 1, rings.back()});
             }
         }
+        merge_crossing_loops(lp.paths, single_loops);
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;

@@ -1,0 +1,82 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "plan/pillars.hpp"
+#include "support/stacks.hpp"
+#include "toolpath/support_paths.hpp"
+
+using namespace scaffold;
+
+namespace {
+
+plan::Column pillar(double x, double y, double top) {
+    plan::Column c;
+    c.x0 = c.x1 = x;
+    c.y0 = c.y1 = y;
+    c.z0 = 0;
+    c.z1 = top;
+    return c;
+}
+
+const toolpath::LayerPaths* at_layer(const toolpath::SupportPaths& p, int layer) {
+    for (const auto& lp : p.layers)
+        if (lp.layer == layer) return &lp;
+    return nullptr;
+}
+
+}  // namespace
+
+TEST(SupportPaths, CrossingLoopsArePrintedAsTheOutlineOfTheirUnion) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold sc;
+    // Two pillars 1.2 mm apart (loops of outer radius 1): their centre lines
+    // cross. A third far away stays a loop of its own.
+    sc.columns = {pillar(20, 20, 5), pillar(21.2, 20, 5), pillar(40, 40, 5)};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);  // z = 2.2: above the feet, below the tips
+    ASSERT_NE(lp, nullptr);
+    ASSERT_EQ(lp->paths.size(), 2u);
+    const double rc = plan::loop_shape(s.pillar_radius, s.support_width).centre_radius;
+    int merged = 0;
+    for (const auto& p : lp->paths) {
+        ASSERT_GE(p.points.size(), 4u);
+        EXPECT_NEAR(p.points.front().x, p.points.back().x, 1e-9);  // closed
+        EXPECT_NEAR(p.points.front().y, p.points.back().y, 1e-9);
+        if (p.points.front().x > 30) continue;
+        ++merged;
+        // Every vertex lies on one loop's polygon and not inside the other
+        // loop: no bead is printed across the other pillar.
+        for (const auto& v : p.points) {
+            const double d0 = std::hypot(v.x - 20, v.y - 20), d1 = std::hypot(v.x - 21.2, v.y - 20);
+            EXPECT_GE(std::max(d0, d1), rc * std::cos(3.15 / 8) - 1e-6);
+            EXPECT_LE(std::min(d0, d1), rc + 1e-6);
+            EXPECT_GE(std::min(d0, d1), rc * std::cos(3.15 / 8) - 1e-6) << v.x << ", " << v.y;
+        }
+        // It spans both pillars: as far left as the first loop, as far right
+        // as the second.
+        double x0 = 1e9, x1 = -1e9, l0 = 1e9, l1 = -1e9;
+        for (const auto& v : p.points) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+        for (const auto& v : toolpath::loop(20, 20, s.pillar_radius, s.support_width)) l0 = std::min(l0, v.x);
+        for (const auto& v : toolpath::loop(21.2, 20, s.pillar_radius, s.support_width)) l1 = std::max(l1, v.x);
+        EXPECT_NEAR(x0, l0, 1e-9);
+        EXPECT_NEAR(x1, l1, 1e-9);
+    }
+    EXPECT_EQ(merged, 1);
+}
+
+TEST(SupportPaths, ALoopInsideAnotherIsNotMerged) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold sc;
+    // A thin pillar standing inside a wide one's ring: both loops stay.
+    plan::Column wide = pillar(20, 20, 5), thin = pillar(20.3, 20, 5);
+    wide.radius = 1.3;
+    thin.radius = 0.5;
+    sc.columns = {wide, thin};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);
+    ASSERT_NE(lp, nullptr);
+    EXPECT_EQ(lp->paths.size(), 2u);
+}
