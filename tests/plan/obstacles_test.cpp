@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 
 #include "layers/layer_stack.hpp"
 #include "plan/obstacles.hpp"
@@ -71,16 +72,24 @@ TEST(Obstacles, NoPillarDownThroughAHollowPart) {
         }
 }
 
-TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
+// 0.2 mm layers to 20 mm, a speck of model far away, and a pillar to
+// z = 10 at (50, 50) as the only trunk.
+struct Trunks : ::testing::Test {
     Settings s;
-    // 0.2 mm layers to 20 mm, a speck of model far away.
     const layers::LayerStack st = test::empty_stack(20, 80);
-    const plan::Obstacles obs(st, s);
-    // A pillar to z = 10 at (50, 50), then a point 1.5 mm away over layer 70.
-    auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    const plan::Obstacles obs{st, s};
+    const std::optional<std::vector<plan::Column>> trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    plan::Trunks with_steering(double steer) const {
+        plan::Trunks t(st, steer);
+        if (trunk) t.add(*trunk, st, s);
+        return t;
+    }
+};
+
+TEST_F(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
     ASSERT_TRUE(trunk);
-    plan::Trunks trunks(st, plan::kBranchSteer);
-    trunks.add(*trunk, st, s);
+    const plan::Trunks trunks = with_steering(plan::kBranchSteer);
+    // A point 1.5 mm away over layer 70.
     auto alone = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s);
     auto branch = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
     ASSERT_TRUE(alone && branch);
@@ -96,14 +105,9 @@ TEST(Trunks, ANearbyPointBranchesOffAnEarlierPillar) {
     EXPECT_NEAR(branch->back().z1, st.layers[69].z, 1e-6);  // the layer under the point's
 }
 
-TEST(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
-    Settings s;
-    const layers::LayerStack st = test::empty_stack(20, 80);
-    const plan::Obstacles obs(st, s);
-    auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+TEST_F(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
     ASSERT_TRUE(trunk);
-    plan::Trunks trunks(st, 0.0);
-    trunks.add(*trunk, st, s);
+    const plan::Trunks trunks = with_steering(0.0);
     // 1.5 mm away: its own way to the bed, straight down.
     auto apart = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
     ASSERT_TRUE(apart);
