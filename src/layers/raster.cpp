@@ -34,6 +34,53 @@ void BitGrid::clear(const CellBox& box) {
 
 namespace {
 
+// Fixed point for stepping along a line in cell units: 40 bits of fraction
+// leave 23 of integer part, and over at most kMaxSteps steps the error stays
+// below 2^-24 cells, far inside kSureCells.
+constexpr int kFixBits = 40;
+constexpr double kFixOne = static_cast<double>(std::int64_t{1} << kFixBits);
+constexpr std::int64_t kFixMask = (std::int64_t{1} << kFixBits) - 1;
+constexpr double kFixLimit = static_cast<double>(1 << 21);  // |cell coordinate| below this
+constexpr int kMaxSteps = 1 << 16;
+// A fraction clear of both cell borders by kSureCells: then its floor is
+// the exact computation's.
+constexpr std::uint64_t kFixSureLo = static_cast<std::uint64_t>(BitGrid::kSureCells * kFixOne) + 1;
+constexpr std::uint64_t kFixSureRange = (std::uint64_t{1} << kFixBits) - 2 * kFixSureLo;
+bool fix_sure(std::int64_t v) { return static_cast<std::uint64_t>(v & kFixMask) - kFixSureLo < kFixSureRange; }
+
+}  // namespace
+
+bool BitGrid::all_set_at(double x0, double y0, double dx, double dy, int n, int i_begin) const {
+    const double u0 = (x0 - ox_) * inv_cell_, v0 = (y0 - oy_) * inv_cell_;
+    const double du = dx / n * inv_cell_, dv = dy / n * inv_cell_;
+    const double u1 = u0 + n * du, v1 = v0 + n * dv;
+    auto exact_get = [&](int i) {
+        const double t = static_cast<double>(i) / n;
+        return get(col(x0 + dx * t), row(y0 + dy * t));
+    };
+    if (!(n <= kMaxSteps && std::max({std::abs(u0), std::abs(v0), std::abs(u1), std::abs(v1)}) < kFixLimit)) {
+        for (int i = i_begin; i <= n; ++i)
+            if (!exact_get(i)) return false;
+        return true;
+    }
+    const std::int64_t su = static_cast<std::int64_t>(du * kFixOne), sv = static_cast<std::int64_t>(dv * kFixOne);
+    std::int64_t u = static_cast<std::int64_t>(u0 * kFixOne) + i_begin * su;
+    std::int64_t v = static_cast<std::int64_t>(v0 * kFixOne) + i_begin * sv;
+    for (int i = i_begin; i <= n; ++i, u += su, v += sv) {
+        if (!(fix_sure(u) && fix_sure(v))) {
+            if (!exact_get(i)) return false;
+            continue;
+        }
+        const int ci = static_cast<int>(u >> kFixBits), cj = static_cast<int>(v >> kFixBits);
+        if (static_cast<unsigned>(ci) >= static_cast<unsigned>(nx_) || static_cast<unsigned>(cj) >= static_cast<unsigned>(ny_))
+            return false;
+        if (!((words_[word_index(ci, cj)] >> (ci & 63)) & 1u)) return false;
+    }
+    return true;
+}
+
+namespace {
+
 struct Interval {
     double lo = 1, hi = 0;
     bool empty() const { return hi < lo; }

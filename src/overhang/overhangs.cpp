@@ -204,24 +204,13 @@ int sample_count(double dx, double dy, double step) {
 }
 
 // Whether every centre-line sample straight_piece takes of segments
-// [first, last] is held (most pieces): found without storing the samples,
-// stepping by a multiplied increment, a sample near a cell border redone
-// the exact way.
+// [first, last] is held (most pieces): found without storing the samples.
 bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                       const layers::BitGrid& held, double step) {
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
         const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0;
-        const int n = sample_count(dx, dy, step);
-        const double x0 = sg.x0, y0 = sg.y0, ddx = dx / n, ddy = dy / n;
-        for (int i = k == first ? 0 : 1; i <= n; ++i) {
-            int ci, cj;
-            if (!held.sure_cell(x0 + i * ddx, y0 + i * ddy, ci, cj)) {
-                double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-                ci = held.col(x), cj = held.row(y);
-            }
-            if (!held.get(ci, cj)) return false;
-        }
+        if (!held.all_set_at(sg.x0, sg.y0, dx, dy, sample_count(dx, dy, step), k == first ? 0 : 1)) return false;
     }
     return true;
 }
