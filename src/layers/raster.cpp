@@ -155,62 +155,86 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     const double v0 = (x0 - ox_) * inv_cell_ - 0.5, v1 = (x1 - ox_) * inv_cell_ - 0.5, rv = r * inv_cell_;
     const double reach = (j1 + 1.0) * (std::abs(k) + std::abs(q));
     const bool linear = len2 > 0 && std::abs(a) + std::abs(p) + hb + std::abs(l) + std::abs(v0) + std::abs(v1) + rv + reach < 5e7;
+    constexpr double kHuge = 1e300;
+    auto exact_row = [&](int j) {
+        Interval span = capsule_row(x0, y0, x1, y1, r, cy(j));
+        if (span.empty()) return;
+        set_row_span(j, static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5)),
+                     static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5)));
+    };
     // Rows more than r (and a margin far above rounding) from both ends'
     // y, between them: no end disc reaches them and the band's ends do not
     // bound them.
     const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
-    for (int j = j0; j <= j1; ++j) {
-        const double c = cy(j);
-        int i0 = 0, i1 = -1;
-        if (linear) {
-            const double vc = a + j * k;
-            if (c - ylo >= mid && yhi - c >= mid) {
-                if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1)) {
-                    set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
-                    continue;
-                }
-            } else {
-                double lo = 1, hi = 0;  // empty
-                auto unite = [&](double l0, double h0) {
-                    if (lo > hi) { lo = l0; hi = h0; return; }
-                    lo = std::min(lo, l0);
-                    hi = std::max(hi, h0);
-                };
-                if (double e = c - y0; std::abs(e) <= r) {
-                    double h = std::sqrt(r * r - e * e) * inv_cell_;
-                    unite(v0 - h, v0 + h);
-                }
-                if (double e = c - y1; std::abs(e) <= r) {
-                    double h = std::sqrt(r * r - e * e) * inv_cell_;
-                    unite(v1 - h, v1 + h);
-                }
-                bool band = true, sure = true;
-                double bl = -1e300, bh = 1e300;
-                if (dy != 0) bl = vc - hb, bh = vc + hb;
-                else if (std::abs(c - y0) > r) band = false;
-                if (dx != 0) {
-                    const double e = p + j * q;
-                    bl = std::max(bl, dx > 0 ? e : e + l);
-                    bh = std::min(bh, dx > 0 ? e + l : e);
-                } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
-                    band = false;
-                }
-                if (band) {
-                    sure = std::abs(bh - bl) > kSureCells;
-                    if (bl <= bh) unite(bl, bh);
-                }
-                if (sure && lo > hi) continue;  // nothing on this row
-                if (sure && sure_floor(lo, i0) && sure_floor(hi, i1)) {
-                    set_row_span(j, i0 + 1, i1);
-                    continue;
-                }
-            }
+    auto is_mid = [&](double c) { return c - ylo >= mid && yhi - c >= mid; };
+    if (!linear) {
+        for (int j = j0; j <= j1; ++j) exact_row(j);
+        return;
+    }
+    // is_mid holds on one run of rows (cy grows with j): find its ends.
+    int m0 = j0, m1 = j1;
+    while (m0 <= j1 && !is_mid(cy(m0))) ++m0;
+    if (m0 <= j1)
+        while (!is_mid(cy(m1))) --m1;
+    // The other rows: the hull of the end discs' and the band's spans.
+    for (int j = j0 == m0 ? m1 + 1 : j0; j <= j1; j = j + 1 == m0 ? m1 + 1 : j + 1) {
+        const double c = cy(j), vc = a + j * k;
+        double lo = kHuge, hi = -kHuge;  // empty
+        if (double e = c - y0; std::abs(e) <= r) {
+            double h = std::sqrt(r * r - e * e) * inv_cell_;
+            lo = v0 - h, hi = v0 + h;
         }
-        Interval span = capsule_row(x0, y0, x1, y1, r, c);
-        if (span.empty()) continue;
-        i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
-        i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
-        set_row_span(j, i0, i1);
+        if (double e = c - y1; std::abs(e) <= r) {
+            double h = std::sqrt(r * r - e * e) * inv_cell_;
+            lo = std::min(lo, v1 - h), hi = std::max(hi, v1 + h);
+        }
+        bool band = true, sure = true;
+        double bl = -1e300, bh = 1e300;
+        if (dy != 0) bl = vc - hb, bh = vc + hb;
+        else if (std::abs(c - y0) > r) band = false;
+        if (dx != 0) {
+            const double e = p + j * q;
+            bl = std::max(bl, dx > 0 ? e : e + l);
+            bh = std::min(bh, dx > 0 ? e + l : e);
+        } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
+            band = false;
+        }
+        if (band) {
+            sure = std::abs(bh - bl) > kSureCells;
+            if (bl <= bh) lo = std::min(lo, bl), hi = std::max(hi, bh);
+        }
+        if (sure && lo > hi) continue;  // nothing on this row
+        int i0 = 0, i1 = -1;
+        if (sure && sure_floor(lo, i0) && sure_floor(hi, i1))
+            set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+        else
+            exact_row(j);
+    }
+    if (m0 > j1) return;
+    // The run steps the band's bounds in fixed point, when they stay within
+    // its range.
+    const bool fixed = m1 - m0 <= kMaxSteps && std::abs(k) < kFixLimit &&
+                       std::max({std::abs(a + m0 * k - hb), std::abs(a + m0 * k + hb), std::abs(a + m1 * k - hb),
+                                 std::abs(a + m1 * k + hb)}) < kFixLimit;
+    if (fixed) {
+        const std::int64_t fk = static_cast<std::int64_t>(k * kFixOne);
+        const double vc = a + m0 * k;
+        std::int64_t lo = static_cast<std::int64_t>((vc - hb) * kFixOne), hi = static_cast<std::int64_t>((vc + hb) * kFixOne);
+        for (int j = m0; j <= m1; ++j, lo += fk, hi += fk) {
+            if (fix_sure(lo) && fix_sure(hi))
+                set_row_span(j, static_cast<int>(lo >> kFixBits) + 1, static_cast<int>(hi >> kFixBits));
+            else
+                exact_row(j);
+        }
+        return;
+    }
+    for (int j = m0; j <= m1; ++j) {
+        const double vc = a + j * k;
+        int i0 = 0, i1 = -1;
+        if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1))
+            set_row_span(j, i0 + 1, i1);
+        else
+            exact_row(j);
     }
 }
 
