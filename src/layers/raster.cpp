@@ -177,31 +177,44 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     if (m0 <= j1)
         while (!is_mid(cy(m1))) --m1;
     // The other rows: the hull of the end discs' and the band's spans.
+    // The band's ends bound it on every row of a slanted line: that case
+    // takes no branch but the discs'.
+    const bool slanted = dx != 0 && dy != 0;
+    const double lo_end = dx > 0 ? 0 : l, hi_end = dx > 0 ? l : 0, rr = r * r;
     for (int j = j0 == m0 ? m1 + 1 : j0; j <= j1; j = j + 1 == m0 ? m1 + 1 : j + 1) {
         const double c = cy(j), vc = a + j * k;
         double lo = kHuge, hi = -kHuge;  // empty
-        if (double e = c - y0; std::abs(e) <= r) {
-            double h = std::sqrt(r * r - e * e) * inv_cell_;
+        const double e0 = c - y0, e1 = c - y1;
+        if (std::abs(e0) <= r) {
+            double h = std::sqrt(rr - e0 * e0) * inv_cell_;
             lo = v0 - h, hi = v0 + h;
         }
-        if (double e = c - y1; std::abs(e) <= r) {
-            double h = std::sqrt(r * r - e * e) * inv_cell_;
+        if (std::abs(e1) <= r) {
+            double h = std::sqrt(rr - e1 * e1) * inv_cell_;
             lo = std::min(lo, v1 - h), hi = std::max(hi, v1 + h);
         }
-        bool band = true, sure = true;
-        double bl = -1e300, bh = 1e300;
-        if (dy != 0) bl = vc - hb, bh = vc + hb;
-        else if (std::abs(c - y0) > r) band = false;
-        if (dx != 0) {
+        bool sure = true;
+        if (slanted) {
             const double e = p + j * q;
-            bl = std::max(bl, dx > 0 ? e : e + l);
-            bh = std::min(bh, dx > 0 ? e + l : e);
-        } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
-            band = false;
-        }
-        if (band) {
+            const double bl = std::max(vc - hb, e + lo_end), bh = std::min(vc + hb, e + hi_end);
             sure = std::abs(bh - bl) > kSureCells;
             if (bl <= bh) lo = std::min(lo, bl), hi = std::max(hi, bh);
+        } else {
+            bool band = true;
+            double bl = -1e300, bh = 1e300;
+            if (dy != 0) bl = vc - hb, bh = vc + hb;
+            else if (std::abs(e0) > r) band = false;
+            if (dx != 0) {
+                const double e = p + j * q;
+                bl = std::max(bl, dx > 0 ? e : e + l);
+                bh = std::min(bh, dx > 0 ? e + l : e);
+            } else if (double t = e0 * dy; t < 0 || t > len2) {
+                band = false;
+            }
+            if (band) {
+                sure = std::abs(bh - bl) > kSureCells;
+                if (bl <= bh) lo = std::min(lo, bl), hi = std::max(hi, bh);
+            }
         }
         if (sure && lo > hi) continue;  // nothing on this row
         int i0 = 0, i1 = -1;

@@ -1,6 +1,7 @@
 #include "overhang/overhangs.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <exception>
@@ -397,9 +398,13 @@ constexpr std::size_t kMaxThreads = 4;
 // start than they save.
 constexpr std::size_t kMinSegmentsPerThread = 20000;
 
-// find_regions_in over the whole stack, in ranges of about equal work on
-// up to kMaxThreads threads, joined in layer order: the result does not
-// depend on the split.
+// Ranges a thread: one that finishes early (its layers were light, or the
+// machine busy) takes the next range, so the threads end close together.
+constexpr std::size_t kRangesPerThread = 4;
+
+// find_regions_in over the whole stack, in ranges of about equal work taken
+// in turn by up to kMaxThreads threads, joined in layer order: the result
+// does not depend on the split.
 std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto) {
     const int n_layers = static_cast<int>(stack.layers.size());
     std::vector<std::size_t> work(n_layers + 1, 0);
@@ -410,27 +415,31 @@ std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings
     }
     const std::size_t threads = std::min({std::max<std::size_t>(1, std::thread::hardware_concurrency()), kMaxThreads,
                                           std::max<std::size_t>(1, work[n_layers] / kMinSegmentsPerThread)});
+    const std::size_t ranges = threads == 1 ? 1 : threads * kRangesPerThread;
     std::vector<int> bounds{0};
-    for (std::size_t t = 1; t < threads; ++t)
-        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / threads) - work.begin()));
+    for (std::size_t t = 1; t < ranges; ++t)
+        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / ranges) - work.begin()));
     bounds.push_back(n_layers);
-    std::vector<std::vector<Region>> parts(threads);
-    std::vector<std::exception_ptr> errors(threads);
-    auto run = [&](std::size_t t) {
-        try {
-            find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
-        } catch (...) {
-            errors[t] = std::current_exception();
+    std::vector<std::vector<Region>> parts(ranges);
+    std::vector<std::exception_ptr> errors(ranges);
+    std::atomic<std::size_t> next{0};
+    auto run = [&] {
+        for (std::size_t t = next++; t < ranges; t = next++) {
+            try {
+                find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
+            } catch (...) {
+                errors[t] = std::current_exception();
+            }
         }
     };
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run, t);
-    run(0);
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run);
+    run();
     for (std::thread& th : pool) th.join();
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
     std::vector<Region> found = std::move(parts[0]);
-    for (std::size_t t = 1; t < threads; ++t)
+    for (std::size_t t = 1; t < ranges; ++t)
         for (Region& r : parts[t]) found.push_back(std::move(r));
     return found;
 }
