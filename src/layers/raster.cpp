@@ -136,8 +136,13 @@ Interval capsule_row(double x0, double y0, double x1, double y1, double r, doubl
 void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double width) {
     // Never thinner than a cell, so a bead always leaves a connected trace.
     double r = std::max(width * 0.5, cell_ * 0.5);
-    int j0 = std::max(0, row(std::min(y0, y1) - r));
-    int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
+    // row() without its division where a multiplication surely agrees.
+    auto fast_row = [&](double y) {
+        int j;
+        return sure_floor((y - oy_) * inv_cell_, j) ? j : row(y);
+    };
+    int j0 = std::max(0, fast_row(std::min(y0, y1) - r));
+    int j1 = std::min(ny_ - 1, fast_row(std::max(y0, y1) + r));
     if (j0 > j1) return;
     // capsule_row's bounds, in cell units (v = (x - ox) / cell - 0.5), are
     // linear in the row j but for the end discs: the band across the line

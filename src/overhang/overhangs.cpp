@@ -196,22 +196,32 @@ constexpr double kDanglingEnd = 1.0;
 // two held parts: slicers leave such runs unmarked at a slope's edge.
 constexpr double kShortSpan = 2.0;
 
-// ceil(hypot(dx, dy) / step), at least 1: the samples of a segment after
-// its first. A square root instead of hypot, unless close to an integer.
-int sample_count(double dx, double dy, double step) {
-    double q = std::sqrt(dx * dx + dy * dy) / step, c = std::ceil(q);
-    if (c - q < 1e-9 * (c + 1) || q - (c - 1) < 1e-9 * (c + 1)) c = std::ceil(std::hypot(dx, dy) / step);
-    return std::max(1, static_cast<int>(c));
+}  // namespace
+
+// A square root instead of hypot and a multiplication instead of the
+// division, unless the quotient is close to an integer.
+int sample_count(double dx, double dy, double step, double inv_step) {
+    const double q = std::sqrt(dx * dx + dy * dy) * inv_step;
+    if (q < 1e9) {
+        int c = static_cast<int>(q);
+        if (c < q) ++c;  // ceil, q >= 0
+        if (c - q >= 1e-9 * (c + 1) && q - (c - 1) >= 1e-9 * (c + 1)) return std::max(1, c);
+    }
+    return std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / step)));
 }
+
+namespace {
 
 // Whether every centre-line sample straight_piece takes of segments
 // [first, last] is held (most pieces): found without storing the samples.
 bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                       const layers::BitGrid& held, double step) {
+    const double inv_step = 1 / step;
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
         const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0;
-        if (!held.all_set_at(sg.x0, sg.y0, dx, dy, sample_count(dx, dy, step), k == first ? 0 : 1)) return false;
+        if (!held.all_set_at(sg.x0, sg.y0, dx, dy, sample_count(dx, dy, step, inv_step), k == first ? 0 : 1))
+            return false;
     }
     return true;
 }

@@ -33,6 +33,11 @@ struct SupportPoints {
 };
 
 Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& settings);
+
+// The centre-line samples a segment (dx, dy) gets after its first, at most
+// `step` mm apart: ceil(hypot(dx, dy) / step), at least 1. Computed the
+// fast way where that cannot round differently; inv_step is 1 / step.
+int sample_count(double dx, double dy, double step, double inv_step);
 SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack& stack,
                            const Settings& settings);
 
