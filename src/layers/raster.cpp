@@ -47,6 +47,28 @@ constexpr int kMaxSteps = 1 << 16;
 constexpr std::uint64_t kFixSureLo = static_cast<std::uint64_t>(BitGrid::kSureCells * kFixOne) + 1;
 constexpr std::uint64_t kFixSureRange = (std::uint64_t{1} << kFixBits) - 2 * kFixSureLo;
 bool fix_sure(std::int64_t v) { return static_cast<std::uint64_t>(v & kFixMask) - kFixSureLo < kFixSureRange; }
+// floor(v) when v is clear of integers by kSureCells, as sure_floor, by way
+// of fixed point.
+bool fix_floor(double v, int& out) {
+    if (!(std::abs(v) < kFixLimit)) return false;
+    const std::int64_t f = static_cast<std::int64_t>(v * kFixOne);
+    out = static_cast<int>(f >> kFixBits);
+    return fix_sure(f);
+}
+
+// Cells i0..i1 of a row's words, all inside the grid; none when i0 > i1.
+void or_span(std::uint64_t* row, int i0, int i1) {
+    if (i0 > i1) return;
+    const int w0 = i0 >> 6, w1 = i1 >> 6;
+    const std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63), hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
+    if (w0 == w1) {
+        row[w0] |= lo & hi;
+        return;
+    }
+    row[w0] |= lo;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
+    row[w1] |= hi;
+}
 
 }  // namespace
 
@@ -186,6 +208,9 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     // takes no branch but the discs'.
     const bool slanted = dx != 0 && dy != 0;
     const double lo_end = dx > 0 ? 0 : l, hi_end = dx > 0 ? l : 0, rr = r * r;
+    // Spans a cell inside the grid need no clipping: every span lies within
+    // the capsule's x extent.
+    const bool inside = std::min(v0, v1) - rv > 1 && std::max(v0, v1) + rv < nx_ - 2;
     for (int j = j0 == m0 ? m1 + 1 : j0; j <= j1; j = j + 1 == m0 ? m1 + 1 : j + 1) {
         const double c = cy(j), vc = a + j * k;
         double lo = kHuge, hi = -kHuge;  // empty
@@ -223,10 +248,12 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
         }
         if (sure && lo > hi) continue;  // nothing on this row
         int i0 = 0, i1 = -1;
-        if (sure && sure_floor(lo, i0) && sure_floor(hi, i1))
-            set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
-        else
+        if (!(sure && fix_floor(lo, i0) && fix_floor(hi, i1)))
             exact_row(j);
+        else if (inside)
+            or_span(&words_[static_cast<std::size_t>(j) * wpr_], i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+        else
+            set_row_span(j, i0 + 1, i1);
     }
     if (m0 > j1) return;
     // The run steps the band's bounds in fixed point, when they stay within
@@ -238,11 +265,15 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
         const std::int64_t fk = static_cast<std::int64_t>(k * kFixOne);
         const double vc = a + m0 * k;
         std::int64_t lo = static_cast<std::int64_t>((vc - hb) * kFixOne), hi = static_cast<std::int64_t>((vc + hb) * kFixOne);
-        for (int j = m0; j <= m1; ++j, lo += fk, hi += fk) {
-            if (fix_sure(lo) && fix_sure(hi))
-                set_row_span(j, static_cast<int>(lo >> kFixBits) + 1, static_cast<int>(hi >> kFixBits));
-            else
+        std::uint64_t* row = &words_[static_cast<std::size_t>(m0) * wpr_];
+        for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
+            const int i0 = static_cast<int>(lo >> kFixBits) + 1, i1 = static_cast<int>(hi >> kFixBits);
+            if (!(fix_sure(lo) && fix_sure(hi)))
                 exact_row(j);
+            else if (inside)
+                or_span(row, i0, i1);
+            else
+                set_row_span(j, i0, i1);
         }
         return;
     }
