@@ -193,16 +193,21 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     // y, between them: no end disc reaches them and the band's ends do not
     // bound them.
     const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
-    auto is_mid = [&](double c) { return c - ylo >= mid && yhi - c >= mid; };
     if (!linear) {
         for (int j = j0; j <= j1; ++j) exact_row(j);
         return;
     }
-    // is_mid holds on one run of rows (cy grows with j): find its ends.
-    int m0 = j0, m1 = j1;
-    while (m0 <= j1 && !is_mid(cy(m0))) ++m0;
-    if (m0 <= j1)
-        while (!is_mid(cy(m1))) --m1;
+    // Such rows form one run [m0, m1] (cy grows with j): each end is where
+    // one of the two tests turns, found from an estimate.
+    auto estimate = [&](double y, int lo, int hi) {
+        return static_cast<int>(std::clamp((y - oy_) * inv_cell_ - 0.5, static_cast<double>(lo), static_cast<double>(hi)));
+    };
+    int m0 = estimate(ylo + mid, j0, j1 + 1), m1 = estimate(yhi - mid, j0 - 1, j1);
+    while (m0 > j0 && cy(m0 - 1) - ylo >= mid) --m0;
+    while (m0 <= j1 && !(cy(m0) - ylo >= mid)) ++m0;
+    while (m1 < j1 && yhi - cy(m1 + 1) >= mid) ++m1;
+    while (m1 >= j0 && !(yhi - cy(m1) >= mid)) --m1;
+    if (m0 > m1) m0 = j1 + 1, m1 = j1;  // none
     // The other rows: the hull of the end discs' and the band's spans.
     // The band's ends bound it on every row of a slanted line: that case
     // takes no branch but the discs'.
