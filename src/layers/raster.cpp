@@ -550,15 +550,19 @@ BitGrid BitGrid::empty_like() const {
     return g;
 }
 
-BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
+BitGrid BitGrid::enclosed(const BitGrid& seeds) const { return enclosed(seeds, {0, 0, nx_ - 1, ny_ - 1}); }
+
+BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const {
     // Only the regions the seeds are in are flooded, so a layer with a few
     // candidate cells costs a few small floods, not a whole-grid fill. The
     // seeds of an enclosed flood's spans go straight to out.
     BitGrid out = empty_like(), visited = empty_like();
     std::vector<std::pair<int, int>> stack;
     std::vector<Span> spans;
-    for (int j = 0; j < ny_; ++j) {
-        for (int w = 0; w < wpr_; ++w) {
+    const CellBox b = clipped(box);
+    if (b.empty()) return out;
+    for (int j = b.j0; j <= b.j1; ++j) {
+        for (int w = b.i0 >> 6; w <= b.i1 >> 6; ++w) {
             std::uint64_t bits = seeds.words_[static_cast<std::size_t>(j) * wpr_ + w];
             while (bits) {
                 int i = w * 64 + std::countr_zero(bits);

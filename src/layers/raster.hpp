@@ -102,6 +102,8 @@ public:
     // The cells of `seeds` (same shape) that lie in holes enclosed by set
     // cells; like filled() & seeds, but floods only where the seeds are.
     BitGrid enclosed(const BitGrid& seeds) const;
+    // The same for seeds that lie within box (whole words).
+    BitGrid enclosed(const BitGrid& seeds, const CellBox& box) const;
     std::size_t count() const;
     bool any() const;
     bool any(const CellBox& box) const;  // within box (whole words)

@@ -230,11 +230,12 @@ bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t firs
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
 // Each piece is judged on its own, as the validator does: a held span keeps
-// its own bead from being overhang, not the beads it overlaps.
-void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+// its own bead from being overhang, not the beads it overlaps. Returns
+// whether it drew.
+bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
                     std::vector<Sample>& p) {
-    if (all_samples_held(segs, first, last, held, step)) return;  // nothing to draw
+    if (all_samples_held(segs, first, last, held, step)) return false;  // nothing to draw
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -248,6 +249,7 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
             p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj)});
         }
     }
+    bool drew = false;
     for (std::size_t i = 0; i < p.size();) {
         if (p[i].held) { ++i; continue; }
         std::size_t j = i;
@@ -255,9 +257,13 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         bool start_held = i > 0, end_held = j < p.size();
         bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span;
         bool short_end = start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
-        if (!spanned && !short_end) draw_samples(p, i, j - 1, over);
+        if (!spanned && !short_end) {
+            draw_samples(p, i, j - 1, over);
+            drew = true;
+        }
         i = j;
     }
+    return drew;
 }
 
 // One connected overhang region of one layer.
@@ -340,8 +346,8 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     layers::BitGrid below = proto, rim = proto, held = proto, over = proto;
     // What each scratch grid may hold: work stays inside the layers' boxes.
     layers::CellBox below_box, held_box, over_box;
-    bool below_has_skirt = false;
-    int below_index = -1;
+    bool below_has_skirt = false, over_drawn = false;
+    int below_index = -1, over_index = -1;  // over_box is layer_box of layer over_index
     std::vector<Sample> samples;
     for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
@@ -350,7 +356,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             const layers::Layer& under = stack.layers[layer.below];
             below.clear(below_box);
             if (below_has_skirt) rim.clear(below_box);
-            below_box = layers::layer_box(below, under);
+            below_box = layer.below == over_index ? over_box : layers::layer_box(below, under);
             layers::draw_layer(below, under);
             below_has_skirt = std::any_of(under.segments.begin(), under.segments.end(),
                                           [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
@@ -364,8 +370,10 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         // raster alignment never decides a borderline bead.
         held.clear(held_box);
         held_box = below.dilate_into(held, std::max(0.0, layer.height * slope - s.resolution / 2), below_box);
-        over.clear(over_box);
+        if (over_drawn) over.clear(over_box);
         over_box = layers::layer_box(over, layer);
+        over_index = n;
+        over_drawn = false;
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
             // A bead is held where its centre line is held (METHOD.md's rule,
@@ -378,14 +386,14 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
-            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
+            over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
             k = last;
         }
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
+        if (!over_drawn || !over.any(over_box)) continue;
+        over.subtract((below_has_skirt ? rim : below).enclosed(over, over_box), over_box);
         if (!over.any(over_box)) continue;
-        over.subtract((below_has_skirt ? rim : below).enclosed(over));
-        if (!over.any()) continue;
         for (auto& comp : regions(over, kJoin)) {
             Region r;
             r.layer = n;

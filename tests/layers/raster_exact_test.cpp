@@ -247,6 +247,17 @@ TEST(RasterExact, EnclosedIsTheFilledHolesUnderTheSeeds) {
         want &= seeds;
         ASSERT_TRUE(same(g.enclosed(seeds), want)) << n;
         with_holes += want.any();
+        // Seeds in a box, looked for in that box only (the floods still run
+        // the whole grid).
+        const CellBox box{gen.pick(g.width() / 2), gen.pick(g.height() / 2), g.width() / 2 + gen.pick(g.width() / 2),
+                          g.height() / 2 + gen.pick(g.height() / 2)};
+        BitGrid boxed = seeds, mask = seeds;
+        mask.clear();
+        for (int j = box.j0; j <= box.j1; ++j) mask.set_row_span(j, box.i0, box.i1);
+        boxed &= mask;
+        BitGrid want_boxed = want;
+        want_boxed &= mask;
+        ASSERT_TRUE(same(g.enclosed(boxed, box), want_boxed)) << n;
     }
     EXPECT_GT(with_holes, 10);
 }
