@@ -10,27 +10,27 @@
 
 namespace scaffold::overhang {
 
-namespace {
-
-// Beads closer than this belong to one overhang region.
-constexpr double kJoin = 0.6;
-
-struct Cell {
-    int i, j;
-};
-
-// 8-connected components of the set cells, each as a list of cells in
-// row-major discovery order (deterministic).
+// Neighbours read three cells a row away from the grid's edge; the
+// order of discovery is the cell-by-cell search's.
 std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
     layers::BitGrid seen(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
                          g.origin_y() + g.height() * g.cell(), g.cell());
     std::vector<std::vector<Cell>> out;
     std::vector<Cell> stack;
-    const auto& words = g.words();
-    int wpr = g.words_per_row();
-    for (int j = 0; j < g.height(); ++j) {
+    const int wpr = g.words_per_row(), nx = g.width(), ny = g.height();
+    // Set and unseen cells i - 1 .. i + 1 of row j as bits 0..2 (i - 1 >= 0, i + 1 < nx).
+    auto fresh3 = [&](int i, int j) {
+        const std::uint64_t* a = g.row_words(j);
+        const std::uint64_t* b = seen.row_words(j);
+        const int lo = i - 1, w = lo >> 6, sh = lo & 63;
+        std::uint64_t v = (a[w] & ~b[w]) >> sh;
+        if (sh > 61) v |= (a[w + 1] & ~b[w + 1]) << (64 - sh);
+        return v & 7u;
+    };
+    for (int j = 0; j < ny; ++j) {
         for (int w = 0; w < wpr; ++w) {
-            std::uint64_t bits = words[static_cast<std::size_t>(j) * wpr + w];
+            // Cells already seen (reached from an earlier row) are skipped a word at a time.
+            std::uint64_t bits = g.row_words(j)[w] & ~seen.row_words(j)[w];
             while (bits) {
                 int i = w * 64 + std::countr_zero(bits);
                 bits &= bits - 1;
@@ -42,6 +42,17 @@ std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
                     Cell c = stack.back();
                     stack.pop_back();
                     comp.push_back(c);
+                    if (c.i >= 1 && c.i + 1 < nx && c.j >= 1 && c.j + 1 < ny) {
+                        // The same neighbours in the same order, read a row at a time.
+                        const std::uint64_t rows[3] = {fresh3(c.i, c.j - 1), fresh3(c.i, c.j) & 5u, fresh3(c.i, c.j + 1)};
+                        for (int dj = -1; dj <= 1; ++dj)
+                            for (std::uint64_t m = rows[dj + 1]; m; m &= m - 1) {
+                                const int a = c.i - 1 + std::countr_zero(m), b = c.j + dj;
+                                seen.set(a, b);
+                                stack.push_back({a, b});
+                            }
+                        continue;
+                    }
                     for (int dj = -1; dj <= 1; ++dj)
                         for (int di = -1; di <= 1; ++di) {
                             int a = c.i + di, b = c.j + dj;
@@ -52,11 +63,18 @@ std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
                         }
                 }
                 out.push_back(std::move(comp));
+                bits &= ~seen.row_words(j)[w];
             }
         }
     }
     return out;
 }
+
+namespace {
+
+// Beads closer than this belong to one overhang region.
+constexpr double kJoin = 0.6;
+
 
 // One point per grid bin of `cells`, on the cell nearest the bin's centroid.
 void bin_points(const layers::BitGrid& g, const std::vector<Cell>& cells, double spacing, double shift, double z,
