@@ -74,6 +74,11 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     for (std::size_t i = 1; i < stack.layers.size(); ++i)
         if (stack.layers[i].z < stack.layers[lowest].z - kZEps) lowest = i;
     double min_z = stack.layers[lowest].z;
+    // The bounds in the same pass (from the lowest layer on, in order),
+    // while each layer's segments are at hand.
+    Bounds& b = stack.bounds;
+    b.min_x = b.min_y = 1e300;
+    b.max_x = b.max_y = -1e300;
     for (std::size_t i = 0; i < stack.layers.size(); ++i) {
         Layer& L = stack.layers[i];
         L.on_bed = i <= lowest || L.z <= min_z + kZEps;
@@ -93,12 +98,8 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
             double w = width_from_e(m.e, len, L.height, settings.filament_diameter);
             s.width = static_cast<float>(std::clamp(w, 0.05 * settings.nozzle_diameter, 4.0 * settings.nozzle_diameter));
         }
-    }
-    Bounds& b = stack.bounds;
-    b.min_x = b.min_y = 1e300;
-    b.max_x = b.max_y = -1e300;
-    for (std::size_t i = lowest; i < stack.layers.size(); ++i) {
-        for (const Segment& s : stack.layers[i].segments) {
+        if (i < lowest) continue;
+        for (const Segment& s : L.segments) {
             double r = s.width / 2;
             b.min_x = std::min({b.min_x, s.x0 - r, s.x1 - r});
             b.min_y = std::min({b.min_y, s.y0 - r, s.y1 - r});

@@ -34,6 +34,75 @@ void BitGrid::clear(const CellBox& box) {
 
 namespace {
 
+// Fixed point for stepping along a line in cell units: 40 bits of fraction
+// leave 23 of integer part, and over at most kMaxSteps steps the error stays
+// below 2^-24 cells, far inside kSureCells.
+constexpr int kFixBits = 40;
+constexpr double kFixOne = static_cast<double>(std::int64_t{1} << kFixBits);
+constexpr std::int64_t kFixMask = (std::int64_t{1} << kFixBits) - 1;
+constexpr double kFixLimit = static_cast<double>(1 << 21);  // |cell coordinate| below this
+constexpr int kMaxSteps = 1 << 16;
+// A fraction clear of both cell borders by kSureCells: then its floor is
+// the exact computation's.
+constexpr std::uint64_t kFixSureLo = static_cast<std::uint64_t>(BitGrid::kSureCells * kFixOne) + 1;
+constexpr std::uint64_t kFixSureRange = (std::uint64_t{1} << kFixBits) - 2 * kFixSureLo;
+bool fix_sure(std::int64_t v) { return static_cast<std::uint64_t>(v & kFixMask) - kFixSureLo < kFixSureRange; }
+// floor(v) when v is clear of integers by kSureCells, as sure_floor, by way
+// of fixed point.
+bool fix_floor(double v, int& out) {
+    if (!(std::abs(v) < kFixLimit)) return false;
+    const std::int64_t f = static_cast<std::int64_t>(v * kFixOne);
+    out = static_cast<int>(f >> kFixBits);
+    return fix_sure(f);
+}
+
+// Cells i0..i1 of a row's words, all inside the grid; none when i0 > i1.
+void or_span(std::uint64_t* row, int i0, int i1) {
+    if (i0 > i1) return;
+    const int w0 = i0 >> 6, w1 = i1 >> 6;
+    const std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63), hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
+    if (w0 == w1) {
+        row[w0] |= lo & hi;
+        return;
+    }
+    row[w0] |= lo;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
+    row[w1] |= hi;
+}
+
+}  // namespace
+
+bool BitGrid::all_set_at(double x0, double y0, double dx, double dy, int n, int i_begin) const {
+    const double u0 = (x0 - ox_) * inv_cell_, v0 = (y0 - oy_) * inv_cell_;
+    const double du = dx / n * inv_cell_, dv = dy / n * inv_cell_;
+    const double u1 = u0 + n * du, v1 = v0 + n * dv;
+    auto exact_get = [&](int i) {
+        const double t = static_cast<double>(i) / n;
+        return get(col(x0 + dx * t), row(y0 + dy * t));
+    };
+    if (!(n <= kMaxSteps && std::max({std::abs(u0), std::abs(v0), std::abs(u1), std::abs(v1)}) < kFixLimit)) {
+        for (int i = i_begin; i <= n; ++i)
+            if (!exact_get(i)) return false;
+        return true;
+    }
+    const std::int64_t su = static_cast<std::int64_t>(du * kFixOne), sv = static_cast<std::int64_t>(dv * kFixOne);
+    std::int64_t u = static_cast<std::int64_t>(u0 * kFixOne) + i_begin * su;
+    std::int64_t v = static_cast<std::int64_t>(v0 * kFixOne) + i_begin * sv;
+    for (int i = i_begin; i <= n; ++i, u += su, v += sv) {
+        if (!(fix_sure(u) && fix_sure(v))) {
+            if (!exact_get(i)) return false;
+            continue;
+        }
+        const int ci = static_cast<int>(u >> kFixBits), cj = static_cast<int>(v >> kFixBits);
+        if (static_cast<unsigned>(ci) >= static_cast<unsigned>(nx_) || static_cast<unsigned>(cj) >= static_cast<unsigned>(ny_))
+            return false;
+        if (!((words_[word_index(ci, cj)] >> (ci & 63)) & 1u)) return false;
+    }
+    return true;
+}
+
+namespace {
+
 struct Interval {
     double lo = 1, hi = 0;
     bool empty() const { return hi < lo; }
@@ -89,8 +158,13 @@ Interval capsule_row(double x0, double y0, double x1, double y1, double r, doubl
 void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double width) {
     // Never thinner than a cell, so a bead always leaves a connected trace.
     double r = std::max(width * 0.5, cell_ * 0.5);
-    int j0 = std::max(0, row(std::min(y0, y1) - r));
-    int j1 = std::min(ny_ - 1, row(std::max(y0, y1) + r));
+    // row() without its division where a multiplication surely agrees.
+    auto fast_row = [&](double y) {
+        int j;
+        return sure_floor((y - oy_) * inv_cell_, j) ? j : row(y);
+    };
+    int j0 = std::max(0, fast_row(std::min(y0, y1) - r));
+    int j1 = std::min(ny_ - 1, fast_row(std::max(y0, y1) + r));
     if (j0 > j1) return;
     // capsule_row's bounds, in cell units (v = (x - ox) / cell - 0.5), are
     // linear in the row j but for the end discs: the band across the line
@@ -108,62 +182,113 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
     const double v0 = (x0 - ox_) * inv_cell_ - 0.5, v1 = (x1 - ox_) * inv_cell_ - 0.5, rv = r * inv_cell_;
     const double reach = (j1 + 1.0) * (std::abs(k) + std::abs(q));
     const bool linear = len2 > 0 && std::abs(a) + std::abs(p) + hb + std::abs(l) + std::abs(v0) + std::abs(v1) + rv + reach < 5e7;
+    constexpr double kHuge = 1e300;
+    auto exact_row = [&](int j) {
+        Interval span = capsule_row(x0, y0, x1, y1, r, cy(j));
+        if (span.empty()) return;
+        set_row_span(j, static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5)),
+                     static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5)));
+    };
     // Rows more than r (and a margin far above rounding) from both ends'
     // y, between them: no end disc reaches them and the band's ends do not
     // bound them.
     const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
-    for (int j = j0; j <= j1; ++j) {
-        const double c = cy(j);
-        int i0 = 0, i1 = -1;
-        if (linear) {
-            const double vc = a + j * k;
-            if (c - ylo >= mid && yhi - c >= mid) {
-                if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1)) {
-                    set_row_span(j, i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
-                    continue;
-                }
-            } else {
-                double lo = 1, hi = 0;  // empty
-                auto unite = [&](double l0, double h0) {
-                    if (lo > hi) { lo = l0; hi = h0; return; }
-                    lo = std::min(lo, l0);
-                    hi = std::max(hi, h0);
-                };
-                if (double e = c - y0; std::abs(e) <= r) {
-                    double h = std::sqrt(r * r - e * e) * inv_cell_;
-                    unite(v0 - h, v0 + h);
-                }
-                if (double e = c - y1; std::abs(e) <= r) {
-                    double h = std::sqrt(r * r - e * e) * inv_cell_;
-                    unite(v1 - h, v1 + h);
-                }
-                bool band = true, sure = true;
-                double bl = -1e300, bh = 1e300;
-                if (dy != 0) bl = vc - hb, bh = vc + hb;
-                else if (std::abs(c - y0) > r) band = false;
-                if (dx != 0) {
-                    const double e = p + j * q;
-                    bl = std::max(bl, dx > 0 ? e : e + l);
-                    bh = std::min(bh, dx > 0 ? e + l : e);
-                } else if (double t = (c - y0) * dy; t < 0 || t > len2) {
-                    band = false;
-                }
-                if (band) {
-                    sure = std::abs(bh - bl) > kSureCells;
-                    if (bl <= bh) unite(bl, bh);
-                }
-                if (sure && lo > hi) continue;  // nothing on this row
-                if (sure && sure_floor(lo, i0) && sure_floor(hi, i1)) {
-                    set_row_span(j, i0 + 1, i1);
-                    continue;
-                }
+    if (!linear) {
+        for (int j = j0; j <= j1; ++j) exact_row(j);
+        return;
+    }
+    // Such rows form one run [m0, m1] (cy grows with j): each end is where
+    // one of the two tests turns, found from an estimate.
+    auto estimate = [&](double y, int lo, int hi) {
+        return static_cast<int>(std::clamp((y - oy_) * inv_cell_ - 0.5, static_cast<double>(lo), static_cast<double>(hi)));
+    };
+    int m0 = estimate(ylo + mid, j0, j1 + 1), m1 = estimate(yhi - mid, j0 - 1, j1);
+    while (m0 > j0 && cy(m0 - 1) - ylo >= mid) --m0;
+    while (m0 <= j1 && !(cy(m0) - ylo >= mid)) ++m0;
+    while (m1 < j1 && yhi - cy(m1 + 1) >= mid) ++m1;
+    while (m1 >= j0 && !(yhi - cy(m1) >= mid)) --m1;
+    if (m0 > m1) m0 = j1 + 1, m1 = j1;  // none
+    // The other rows: the hull of the end discs' and the band's spans.
+    // The band's ends bound it on every row of a slanted line: that case
+    // takes no branch but the discs'.
+    const bool slanted = dx != 0 && dy != 0;
+    const double lo_end = dx > 0 ? 0 : l, hi_end = dx > 0 ? l : 0, rr = r * r;
+    // Spans a cell inside the grid need no clipping: every span lies within
+    // the capsule's x extent.
+    const bool inside = std::min(v0, v1) - rv > 1 && std::max(v0, v1) + rv < nx_ - 2;
+    for (int j = j0 == m0 ? m1 + 1 : j0; j <= j1; j = j + 1 == m0 ? m1 + 1 : j + 1) {
+        const double c = cy(j), vc = a + j * k;
+        double lo = kHuge, hi = -kHuge;  // empty
+        const double e0 = c - y0, e1 = c - y1;
+        if (std::abs(e0) <= r) {
+            double h = std::sqrt(rr - e0 * e0) * inv_cell_;
+            lo = v0 - h, hi = v0 + h;
+        }
+        if (std::abs(e1) <= r) {
+            double h = std::sqrt(rr - e1 * e1) * inv_cell_;
+            lo = std::min(lo, v1 - h), hi = std::max(hi, v1 + h);
+        }
+        bool sure = true;
+        if (slanted) {
+            const double e = p + j * q;
+            const double bl = std::max(vc - hb, e + lo_end), bh = std::min(vc + hb, e + hi_end);
+            sure = std::abs(bh - bl) > kSureCells;
+            if (bl <= bh) lo = std::min(lo, bl), hi = std::max(hi, bh);
+        } else {
+            bool band = true;
+            double bl = -1e300, bh = 1e300;
+            if (dy != 0) bl = vc - hb, bh = vc + hb;
+            else if (std::abs(e0) > r) band = false;
+            if (dx != 0) {
+                const double e = p + j * q;
+                bl = std::max(bl, dx > 0 ? e : e + l);
+                bh = std::min(bh, dx > 0 ? e + l : e);
+            } else if (double t = e0 * dy; t < 0 || t > len2) {
+                band = false;
+            }
+            if (band) {
+                sure = std::abs(bh - bl) > kSureCells;
+                if (bl <= bh) lo = std::min(lo, bl), hi = std::max(hi, bh);
             }
         }
-        Interval span = capsule_row(x0, y0, x1, y1, r, c);
-        if (span.empty()) continue;
-        i0 = static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5));
-        i1 = static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5));
-        set_row_span(j, i0, i1);
+        if (sure && lo > hi) continue;  // nothing on this row
+        int i0 = 0, i1 = -1;
+        if (!(sure && fix_floor(lo, i0) && fix_floor(hi, i1)))
+            exact_row(j);
+        else if (inside)
+            or_span(&words_[static_cast<std::size_t>(j) * wpr_], i0 + 1, i1);  // ceil(v) = floor(v) + 1 away from integers
+        else
+            set_row_span(j, i0 + 1, i1);
+    }
+    if (m0 > j1) return;
+    // The run steps the band's bounds in fixed point, when they stay within
+    // its range.
+    const bool fixed = m1 - m0 <= kMaxSteps && std::abs(k) < kFixLimit &&
+                       std::max({std::abs(a + m0 * k - hb), std::abs(a + m0 * k + hb), std::abs(a + m1 * k - hb),
+                                 std::abs(a + m1 * k + hb)}) < kFixLimit;
+    if (fixed) {
+        const std::int64_t fk = static_cast<std::int64_t>(k * kFixOne);
+        const double vc = a + m0 * k;
+        std::int64_t lo = static_cast<std::int64_t>((vc - hb) * kFixOne), hi = static_cast<std::int64_t>((vc + hb) * kFixOne);
+        std::uint64_t* row = &words_[static_cast<std::size_t>(m0) * wpr_];
+        for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
+            const int i0 = static_cast<int>(lo >> kFixBits) + 1, i1 = static_cast<int>(hi >> kFixBits);
+            if (!(fix_sure(lo) && fix_sure(hi)))
+                exact_row(j);
+            else if (inside)
+                or_span(row, i0, i1);
+            else
+                set_row_span(j, i0, i1);
+        }
+        return;
+    }
+    for (int j = m0; j <= m1; ++j) {
+        const double vc = a + j * k;
+        int i0 = 0, i1 = -1;
+        if (sure_floor(vc - hb, i0) && sure_floor(vc + hb, i1))
+            set_row_span(j, i0 + 1, i1);
+        else
+            exact_row(j);
     }
 }
 
@@ -425,15 +550,19 @@ BitGrid BitGrid::empty_like() const {
     return g;
 }
 
-BitGrid BitGrid::enclosed(const BitGrid& seeds) const {
+BitGrid BitGrid::enclosed(const BitGrid& seeds) const { return enclosed(seeds, {0, 0, nx_ - 1, ny_ - 1}); }
+
+BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const {
     // Only the regions the seeds are in are flooded, so a layer with a few
     // candidate cells costs a few small floods, not a whole-grid fill. The
     // seeds of an enclosed flood's spans go straight to out.
     BitGrid out = empty_like(), visited = empty_like();
     std::vector<std::pair<int, int>> stack;
     std::vector<Span> spans;
-    for (int j = 0; j < ny_; ++j) {
-        for (int w = 0; w < wpr_; ++w) {
+    const CellBox b = clipped(box);
+    if (b.empty()) return out;
+    for (int j = b.j0; j <= b.j1; ++j) {
+        for (int w = b.i0 >> 6; w <= b.i1 >> 6; ++w) {
             std::uint64_t bits = seeds.words_[static_cast<std::size_t>(j) * wpr_ + w];
             while (bits) {
                 int i = w * 64 + std::countr_zero(bits);

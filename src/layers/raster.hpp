@@ -46,6 +46,11 @@ public:
         return sure_floor((x - ox_) * inv_cell_, i) && sure_floor((y - oy_) * inv_cell_, j);
     }
     static constexpr double kSureCells = 1e-6;
+    // Whether the cells of the points (x0 + dx * t, y0 + dy * t), t = i / n
+    // for i = i_begin..n, are all set, each cell as col() and row() of that
+    // exact point (outside the grid: not set). Steps in fixed point, a point
+    // near a cell border redone the exact way.
+    bool all_set_at(double x0, double y0, double dx, double dy, int n, int i_begin) const;
 
     bool get(int i, int j) const {
         if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return false;
@@ -97,6 +102,8 @@ public:
     // The cells of `seeds` (same shape) that lie in holes enclosed by set
     // cells; like filled() & seeds, but floods only where the seeds are.
     BitGrid enclosed(const BitGrid& seeds) const;
+    // The same for seeds that lie within box (whole words).
+    BitGrid enclosed(const BitGrid& seeds, const CellBox& box) const;
     std::size_t count() const;
     bool any() const;
     bool any(const CellBox& box) const;  // within box (whole words)

@@ -1,6 +1,7 @@
 #include "overhang/overhangs.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <exception>
@@ -9,27 +10,27 @@
 
 namespace scaffold::overhang {
 
-namespace {
-
-// Beads closer than this belong to one overhang region.
-constexpr double kJoin = 0.6;
-
-struct Cell {
-    int i, j;
-};
-
-// 8-connected components of the set cells, each as a list of cells in
-// row-major discovery order (deterministic).
+// Neighbours read three cells a row away from the grid's edge; the
+// order of discovery is the cell-by-cell search's.
 std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
     layers::BitGrid seen(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
                          g.origin_y() + g.height() * g.cell(), g.cell());
     std::vector<std::vector<Cell>> out;
     std::vector<Cell> stack;
-    const auto& words = g.words();
-    int wpr = g.words_per_row();
-    for (int j = 0; j < g.height(); ++j) {
+    const int wpr = g.words_per_row(), nx = g.width(), ny = g.height();
+    // Set and unseen cells i - 1 .. i + 1 of row j as bits 0..2 (i - 1 >= 0, i + 1 < nx).
+    auto fresh3 = [&](int i, int j) {
+        const std::uint64_t* a = g.row_words(j);
+        const std::uint64_t* b = seen.row_words(j);
+        const int lo = i - 1, w = lo >> 6, sh = lo & 63;
+        std::uint64_t v = (a[w] & ~b[w]) >> sh;
+        if (sh > 61) v |= (a[w + 1] & ~b[w + 1]) << (64 - sh);
+        return v & 7u;
+    };
+    for (int j = 0; j < ny; ++j) {
         for (int w = 0; w < wpr; ++w) {
-            std::uint64_t bits = words[static_cast<std::size_t>(j) * wpr + w];
+            // Cells already seen (reached from an earlier row) are skipped a word at a time.
+            std::uint64_t bits = g.row_words(j)[w] & ~seen.row_words(j)[w];
             while (bits) {
                 int i = w * 64 + std::countr_zero(bits);
                 bits &= bits - 1;
@@ -41,6 +42,17 @@ std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
                     Cell c = stack.back();
                     stack.pop_back();
                     comp.push_back(c);
+                    if (c.i >= 1 && c.i + 1 < nx && c.j >= 1 && c.j + 1 < ny) {
+                        // The same neighbours in the same order, read a row at a time.
+                        const std::uint64_t rows[3] = {fresh3(c.i, c.j - 1), fresh3(c.i, c.j) & 5u, fresh3(c.i, c.j + 1)};
+                        for (int dj = -1; dj <= 1; ++dj)
+                            for (std::uint64_t m = rows[dj + 1]; m; m &= m - 1) {
+                                const int a = c.i - 1 + std::countr_zero(m), b = c.j + dj;
+                                seen.set(a, b);
+                                stack.push_back({a, b});
+                            }
+                        continue;
+                    }
                     for (int dj = -1; dj <= 1; ++dj)
                         for (int di = -1; di <= 1; ++di) {
                             int a = c.i + di, b = c.j + dj;
@@ -51,11 +63,18 @@ std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
                         }
                 }
                 out.push_back(std::move(comp));
+                bits &= ~seen.row_words(j)[w];
             }
         }
     }
     return out;
 }
+
+namespace {
+
+// Beads closer than this belong to one overhang region.
+constexpr double kJoin = 0.6;
+
 
 // One point per grid bin of `cells`, on the cell nearest the bin's centroid.
 void bin_points(const layers::BitGrid& g, const std::vector<Cell>& cells, double spacing, double shift, double z,
@@ -195,33 +214,32 @@ constexpr double kDanglingEnd = 1.0;
 // two held parts: slicers leave such runs unmarked at a slope's edge.
 constexpr double kShortSpan = 2.0;
 
-// ceil(hypot(dx, dy) / step), at least 1: the samples of a segment after
-// its first. A square root instead of hypot, unless close to an integer.
-int sample_count(double dx, double dy, double step) {
-    double q = std::sqrt(dx * dx + dy * dy) / step, c = std::ceil(q);
-    if (c - q < 1e-9 * (c + 1) || q - (c - 1) < 1e-9 * (c + 1)) c = std::ceil(std::hypot(dx, dy) / step);
-    return std::max(1, static_cast<int>(c));
+}  // namespace
+
+// A square root instead of hypot and a multiplication instead of the
+// division, unless the quotient is close to an integer.
+int sample_count(double dx, double dy, double step, double inv_step) {
+    const double q = std::sqrt(dx * dx + dy * dy) * inv_step;
+    if (q < 1e9) {
+        int c = static_cast<int>(q);
+        if (c < q) ++c;  // ceil, q >= 0
+        if (c - q >= 1e-9 * (c + 1) && q - (c - 1) >= 1e-9 * (c + 1)) return std::max(1, c);
+    }
+    return std::max(1, static_cast<int>(std::ceil(std::hypot(dx, dy) / step)));
 }
 
+namespace {
+
 // Whether every centre-line sample straight_piece takes of segments
-// [first, last] is held (most pieces): found without storing the samples,
-// stepping by a multiplied increment, a sample near a cell border redone
-// the exact way.
+// [first, last] is held (most pieces): found without storing the samples.
 bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                       const layers::BitGrid& held, double step) {
+    const double inv_step = 1 / step;
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
         const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0;
-        const int n = sample_count(dx, dy, step);
-        const double x0 = sg.x0, y0 = sg.y0, ddx = dx / n, ddy = dy / n;
-        for (int i = k == first ? 0 : 1; i <= n; ++i) {
-            int ci, cj;
-            if (!held.sure_cell(x0 + i * ddx, y0 + i * ddy, ci, cj)) {
-                double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-                ci = held.col(x), cj = held.row(y);
-            }
-            if (!held.get(ci, cj)) return false;
-        }
+        if (!held.all_set_at(sg.x0, sg.y0, dx, dy, sample_count(dx, dy, step, inv_step), k == first ? 0 : 1))
+            return false;
     }
     return true;
 }
@@ -230,11 +248,12 @@ bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t firs
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
 // Each piece is judged on its own, as the validator does: a held span keeps
-// its own bead from being overhang, not the beads it overlaps.
-void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+// its own bead from being overhang, not the beads it overlaps. Returns
+// whether it drew.
+bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
                     std::vector<Sample>& p) {
-    if (all_samples_held(segs, first, last, held, step)) return;  // nothing to draw
+    if (all_samples_held(segs, first, last, held, step)) return false;  // nothing to draw
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -248,6 +267,7 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
             p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj)});
         }
     }
+    bool drew = false;
     for (std::size_t i = 0; i < p.size();) {
         if (p[i].held) { ++i; continue; }
         std::size_t j = i;
@@ -255,9 +275,13 @@ void straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         bool start_held = i > 0, end_held = j < p.size();
         bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span;
         bool short_end = start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
-        if (!spanned && !short_end) draw_samples(p, i, j - 1, over);
+        if (!spanned && !short_end) {
+            draw_samples(p, i, j - 1, over);
+            drew = true;
+        }
         i = j;
     }
+    return drew;
 }
 
 // One connected overhang region of one layer.
@@ -340,8 +364,8 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     layers::BitGrid below = proto, rim = proto, held = proto, over = proto;
     // What each scratch grid may hold: work stays inside the layers' boxes.
     layers::CellBox below_box, held_box, over_box;
-    bool below_has_skirt = false;
-    int below_index = -1;
+    bool below_has_skirt = false, over_drawn = false;
+    int below_index = -1, over_index = -1;  // over_box is layer_box of layer over_index
     std::vector<Sample> samples;
     for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
@@ -350,7 +374,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             const layers::Layer& under = stack.layers[layer.below];
             below.clear(below_box);
             if (below_has_skirt) rim.clear(below_box);
-            below_box = layers::layer_box(below, under);
+            below_box = layer.below == over_index ? over_box : layers::layer_box(below, under);
             layers::draw_layer(below, under);
             below_has_skirt = std::any_of(under.segments.begin(), under.segments.end(),
                                           [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
@@ -364,8 +388,10 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         // raster alignment never decides a borderline bead.
         held.clear(held_box);
         held_box = below.dilate_into(held, std::max(0.0, layer.height * slope - s.resolution / 2), below_box);
-        over.clear(over_box);
+        if (over_drawn) over.clear(over_box);
         over_box = layers::layer_box(over, layer);
+        over_index = n;
+        over_drawn = false;
         const auto& segs = layer.segments;
         for (std::size_t k = 0; k < segs.size(); ++k) {
             // A bead is held where its centre line is held (METHOD.md's rule,
@@ -378,14 +404,14 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
-            straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
+            over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
             k = last;
         }
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
+        if (!over_drawn || !over.any(over_box)) continue;
+        over.subtract((below_has_skirt ? rim : below).enclosed(over, over_box), over_box);
         if (!over.any(over_box)) continue;
-        over.subtract((below_has_skirt ? rim : below).enclosed(over));
-        if (!over.any()) continue;
         for (auto& comp : regions(over, kJoin)) {
             Region r;
             r.layer = n;
@@ -408,9 +434,13 @@ constexpr std::size_t kMaxThreads = 4;
 // start than they save.
 constexpr std::size_t kMinSegmentsPerThread = 20000;
 
-// find_regions_in over the whole stack, in ranges of about equal work on
-// up to kMaxThreads threads, joined in layer order: the result does not
-// depend on the split.
+// Ranges a thread: one that finishes early (its layers were light, or the
+// machine busy) takes the next range, so the threads end close together.
+constexpr std::size_t kRangesPerThread = 4;
+
+// find_regions_in over the whole stack, in ranges of about equal work taken
+// in turn by up to kMaxThreads threads, joined in layer order: the result
+// does not depend on the split.
 std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto) {
     const int n_layers = static_cast<int>(stack.layers.size());
     std::vector<std::size_t> work(n_layers + 1, 0);
@@ -421,27 +451,31 @@ std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings
     }
     const std::size_t threads = std::min({std::max<std::size_t>(1, std::thread::hardware_concurrency()), kMaxThreads,
                                           std::max<std::size_t>(1, work[n_layers] / kMinSegmentsPerThread)});
+    const std::size_t ranges = threads == 1 ? 1 : threads * kRangesPerThread;
     std::vector<int> bounds{0};
-    for (std::size_t t = 1; t < threads; ++t)
-        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / threads) - work.begin()));
+    for (std::size_t t = 1; t < ranges; ++t)
+        bounds.push_back(static_cast<int>(std::lower_bound(work.begin(), work.end(), work[n_layers] * t / ranges) - work.begin()));
     bounds.push_back(n_layers);
-    std::vector<std::vector<Region>> parts(threads);
-    std::vector<std::exception_ptr> errors(threads);
-    auto run = [&](std::size_t t) {
-        try {
-            find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
-        } catch (...) {
-            errors[t] = std::current_exception();
+    std::vector<std::vector<Region>> parts(ranges);
+    std::vector<std::exception_ptr> errors(ranges);
+    std::atomic<std::size_t> next{0};
+    auto run = [&] {
+        for (std::size_t t = next++; t < ranges; t = next++) {
+            try {
+                find_regions_in(stack, s, proto, bounds[t], bounds[t + 1], parts[t]);
+            } catch (...) {
+                errors[t] = std::current_exception();
+            }
         }
     };
     std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run, t);
-    run(0);
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run);
+    run();
     for (std::thread& th : pool) th.join();
     for (const std::exception_ptr& e : errors)
         if (e) std::rethrow_exception(e);
     std::vector<Region> found = std::move(parts[0]);
-    for (std::size_t t = 1; t < threads; ++t)
+    for (std::size_t t = 1; t < ranges; ++t)
         for (Region& r : parts[t]) found.push_back(std::move(r));
     return found;
 }

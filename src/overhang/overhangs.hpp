@@ -33,6 +33,18 @@ struct SupportPoints {
 };
 
 Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& settings);
+
+struct Cell {
+    int i, j;
+};
+// 8-connected components of the set cells, each as a list of cells in
+// discovery order (depth first from the row-major first cell; deterministic).
+std::vector<std::vector<Cell>> components(const layers::BitGrid& g);
+
+// The centre-line samples a segment (dx, dy) gets after its first, at most
+// `step` mm apart: ceil(hypot(dx, dy) / step), at least 1. Computed the
+// fast way where that cannot round differently; inv_step is 1 / step.
+int sample_count(double dx, double dy, double step, double inv_step);
 SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack& stack,
                            const Settings& settings);
 

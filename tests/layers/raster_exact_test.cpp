@@ -188,6 +188,41 @@ TEST(RasterExact, SureCellAgreesWithColAndRow) {
     EXPECT_GT(sure, 100000);
 }
 
+TEST(RasterExact, AllSetAtMatchesThePlainLoop) {
+    Gen gen;
+    for (double cell : {0.1, 0.07}) {
+        BitGrid g(-2.3137, 1.05, 30, 30, cell);
+        int held = 0;
+        for (int n = 0; n < 20000; ++n) {
+            if (n % 1000 == 0) {
+                // Random cells, dense so that some lines lie wholly on set
+                // cells, sparse so that one cell off changes the answer.
+                g.clear();
+                const int dense = n % 2000 == 0 ? 97 : 60;
+                for (int j = 0; j < g.height(); ++j)
+                    for (int i = 0; i < g.width(); ++i)
+                        if (gen.pick(100) < dense) g.set(i, j);
+            }
+            // Float ends as the layer stack holds them, on and between lattice lines.
+            const float fx0 = static_cast<float>(gen.coord(g.origin_x(), cell, 32) - 1),
+                        fy0 = static_cast<float>(gen.coord(g.origin_y(), cell, 30));
+            float fx1 = static_cast<float>(fx0 + gen.uniform(-3, 3)), fy1 = static_cast<float>(fy0 + gen.uniform(-3, 3));
+            if (gen.pick(4) == 0) fx1 = fx0;
+            if (gen.pick(4) == 0) fy1 = static_cast<float>(gen.coord(g.origin_y(), cell, 30));
+            const double dx = fx1 - fx0, dy = fy1 - fy0;
+            const int steps = 1 + gen.pick(gen.pick(4) == 0 ? 40 : 3), begin = gen.pick(2);
+            bool want = true;
+            for (int i = begin; i <= steps && want; ++i) {
+                const double t = static_cast<double>(i) / steps;
+                want = g.get(g.col(fx0 + dx * t), g.row(fy0 + dy * t));
+            }
+            held += want;
+            ASSERT_EQ(g.all_set_at(fx0, fy0, dx, dy, steps, begin), want) << "cell " << cell << " line " << n;
+        }
+        EXPECT_GT(held, 100);
+    }
+}
+
 TEST(RasterExact, EnclosedIsTheFilledHolesUnderTheSeeds) {
     Gen gen;
     BitGrid g(0, 0, 15.1, 9.7, 0.1);
@@ -212,6 +247,17 @@ TEST(RasterExact, EnclosedIsTheFilledHolesUnderTheSeeds) {
         want &= seeds;
         ASSERT_TRUE(same(g.enclosed(seeds), want)) << n;
         with_holes += want.any();
+        // Seeds in a box, looked for in that box only (the floods still run
+        // the whole grid).
+        const CellBox box{gen.pick(g.width() / 2), gen.pick(g.height() / 2), g.width() / 2 + gen.pick(g.width() / 2),
+                          g.height() / 2 + gen.pick(g.height() / 2)};
+        BitGrid boxed = seeds, mask = seeds;
+        mask.clear();
+        for (int j = box.j0; j <= box.j1; ++j) mask.set_row_span(j, box.i0, box.i1);
+        boxed &= mask;
+        BitGrid want_boxed = want;
+        want_boxed &= mask;
+        ASSERT_TRUE(same(g.enclosed(boxed, box), want_boxed)) << n;
     }
     EXPECT_GT(with_holes, 10);
 }
