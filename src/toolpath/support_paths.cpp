@@ -104,14 +104,19 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
     for (const std::vector<int>& g : groups) {
         if (g.size() < 2) continue;
         BgMulti all;
-        for (int k : g) {
-            BgPolygon poly;
-            for (const Point& pt : paths[loops[k].first].points) poly.outer().push_back({pt.x, pt.y});
-            bg::correct(poly);
-            BgMulti next;
-            bg::union_(all, poly, next);
-            all = std::move(next);
+        try {
+            for (int k : g) {
+                BgPolygon poly;
+                for (const Point& pt : paths[loops[k].first].points) poly.outer().push_back({pt.x, pt.y});
+                bg::correct(poly);
+                BgMulti next;
+                bg::union_(all, poly, next);
+                all = std::move(next);
+            }
+        } catch (const bg::exception&) {
+            continue;  // a degenerate overlay: keep the loops as they are
         }
+        if (all.empty()) continue;
         const Path& proto = paths[loops[g.front()].first];
         for (int k : g) drop[loops[k].first] = 1;
         for (const BgPolygon& poly : all) {

@@ -80,3 +80,39 @@ TEST(SupportPaths, ALoopInsideAnotherIsNotMerged) {
     ASSERT_NE(lp, nullptr);
     EXPECT_EQ(lp->paths.size(), 2u);
 }
+
+TEST(SupportPaths, ACrowdOfCrossingLoopsGivesClosedPaths) {
+    // Thirty pillars crowded into 3 x 3 mm (near-coincident loops, loops
+    // meeting at a point, chains): every path stays a closed ring and
+    // every pillar's centre lies inside some printed outline's box.
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold sc;
+    unsigned seed = 7;
+    auto next = [&seed] { seed = seed * 1103515245u + 12345u; return (seed >> 8) % 1000 / 1000.0; };
+    for (int i = 0; i < 30; ++i) {
+        plan::Column c = pillar(20 + 3 * next(), 20 + 3 * next(), 5);
+        c.radius = 0.5 + 0.8 * next();
+        sc.columns.push_back(c);
+    }
+    sc.columns.push_back(pillar(30, 30, 5));
+    sc.columns.push_back(pillar(30.000001, 30, 5));  // a retrace, left out
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);
+    ASSERT_NE(lp, nullptr);
+    for (const auto& p : lp->paths) {
+        ASSERT_GE(p.points.size(), 4u);
+        EXPECT_NEAR(p.points.front().x, p.points.back().x, 1e-9);
+        EXPECT_NEAR(p.points.front().y, p.points.back().y, 1e-9);
+    }
+    for (const auto& c : sc.columns) {
+        bool inside = false;
+        for (const auto& p : lp->paths) {
+            double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+            for (const auto& v : p.points) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x), y0 = std::min(y0, v.y), y1 = std::max(y1, v.y);
+            inside = inside || (c.x0 > x0 && c.x0 < x1 && c.y0 > y0 && c.y0 < y1);
+        }
+        EXPECT_TRUE(inside) << c.x0 << ", " << c.y0;
+    }
+    EXPECT_LT(lp->paths.size(), 20u);  // the crowd merged
+}
