@@ -273,6 +273,16 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
         const double vc = a + m0 * k;
         std::int64_t lo = static_cast<std::int64_t>((vc - hb) * kFixOne), hi = static_cast<std::int64_t>((vc + hb) * kFixOne);
         std::uint64_t* row = &words_[static_cast<std::size_t>(m0) * wpr_];
+        if (inside) {
+            // The common case in a loop of its own: nothing but the span.
+            for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
+                if (fix_sure(lo) && fix_sure(hi)) [[likely]]
+                    or_span(row, static_cast<int>(lo >> kFixBits) + 1, static_cast<int>(hi >> kFixBits));
+                else
+                    exact_row(j);
+            }
+            return;
+        }
         for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
             const int i0 = static_cast<int>(lo >> kFixBits) + 1, i1 = static_cast<int>(hi >> kFixBits);
             if (!(fix_sure(lo) && fix_sure(hi)))
