@@ -189,10 +189,12 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
         set_row_span(j, static_cast<int>(std::ceil((span.lo - ox_) / cell_ - 0.5)),
                      static_cast<int>(std::floor((span.hi - ox_) / cell_ - 0.5)));
     };
-    // Rows more than r (and a margin far above rounding) from both ends'
-    // y, between them: no end disc reaches them and the band's ends do not
-    // bound them.
-    const double ylo = std::min(y0, y1), yhi = std::max(y0, y1), mid = r + 0.01 * cell_;
+    // Rows between the ends' y and clear of both short sides of the band
+    // (which reach r |dx| / len above and below their end), by a margin far
+    // above rounding: the band's ends do not bound them, and the end discs,
+    // inside the band's long sides, add nothing.
+    const double ylo = std::min(y0, y1), yhi = std::max(y0, y1);
+    const double mid = (len2 > 0 ? r * std::abs(dx) / len : r) + 0.01 * cell_;
     if (!linear) {
         for (int j = j0; j <= j1; ++j) exact_row(j);
         return;
@@ -271,6 +273,16 @@ void BitGrid::draw_segment(double x0, double y0, double x1, double y1, double wi
         const double vc = a + m0 * k;
         std::int64_t lo = static_cast<std::int64_t>((vc - hb) * kFixOne), hi = static_cast<std::int64_t>((vc + hb) * kFixOne);
         std::uint64_t* row = &words_[static_cast<std::size_t>(m0) * wpr_];
+        if (inside) {
+            // The common case in a loop of its own: nothing but the span.
+            for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
+                if (fix_sure(lo) && fix_sure(hi)) [[likely]]
+                    or_span(row, static_cast<int>(lo >> kFixBits) + 1, static_cast<int>(hi >> kFixBits));
+                else
+                    exact_row(j);
+            }
+            return;
+        }
         for (int j = m0; j <= m1; ++j, lo += fk, hi += fk, row += wpr_) {
             const int i0 = static_cast<int>(lo >> kFixBits) + 1, i1 = static_cast<int>(hi >> kFixBits);
             if (!(fix_sure(lo) && fix_sure(hi)))

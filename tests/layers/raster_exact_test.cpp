@@ -261,3 +261,56 @@ TEST(RasterExact, EnclosedIsTheFilledHolesUnderTheSeeds) {
     }
     EXPECT_GT(with_holes, 10);
 }
+
+// draw_layer over polylines as slicers write them: segments chained end to
+// start (some not), lengths 0.01-5 mm at any angle, steep and flat ones,
+// repeated points, widths changing or not along a chain. Its cells must be
+// those of each segment drawn on its own, and of the plain formula.
+TEST(RasterExact, PolylinesMatchSegmentsDrawnAlone) {
+    Gen gen;
+    using scaffold::layers::Layer;
+    using scaffold::layers::Segment;
+    for (double cell : {0.1, 0.07, 0.15}) {
+        for (double origin : {0.0, -2.3137, 1.05}) {
+            BitGrid fast(origin, origin, origin + 30, origin + 30, cell);
+            BitGrid alone = fast, slow = fast;
+            for (int n = 0; n < 60; ++n) {
+                Layer layer;
+                float x = static_cast<float>(gen.coord(origin, cell, 30)), y = static_cast<float>(gen.coord(origin, cell, 30));
+                float w = static_cast<float>(gen.width(cell));
+                for (int k = 0; k < 80; ++k) {
+                    if (gen.pick(15) == 0) {  // a jump: the next segment starts elsewhere
+                        x = static_cast<float>(gen.coord(origin, cell, 30)), y = static_cast<float>(gen.coord(origin, cell, 30));
+                    }
+                    if (gen.pick(3) == 0) w = static_cast<float>(gen.width(cell));
+                    const double len = 0.01 * std::pow(500.0, gen.uniform(0, 1));
+                    double angle = gen.uniform(0, 2 * 3.14159265358979);
+                    switch (gen.pick(8)) {
+                    case 0: angle = gen.pick(4) * 3.14159265358979 / 2; break;           // axis-parallel
+                    case 1: angle = 3.14159265358979 / 2 + gen.uniform(-1e-3, 1e-3); break;  // steep
+                    case 2: angle = gen.uniform(-1e-3, 1e-3); break;                      // flat
+                    default: break;
+                    }
+                    float x1 = static_cast<float>(x + len * std::cos(angle)), y1 = static_cast<float>(y + len * std::sin(angle));
+                    if (gen.pick(20) == 0) x1 = x, y1 = y;  // a repeated point
+                    if (x1 < origin - 1 || x1 > origin + 31) x1 = static_cast<float>(x - len * std::cos(angle));
+                    if (y1 < origin - 1 || y1 > origin + 31) y1 = static_cast<float>(y - len * std::sin(angle));
+                    Segment s;
+                    s.x0 = x, s.y0 = y, s.x1 = x1, s.y1 = y1, s.width = w;
+                    layer.segments.push_back(s);
+                    x = x1, y = y1;
+                }
+                draw_layer(fast, layer);
+                for (const Segment& s : layer.segments) {
+                    alone.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width);
+                    reference_segment(slow, s.x0, s.y0, s.x1, s.y1, s.width);
+                }
+                ASSERT_TRUE(same(fast, alone)) << "cell " << cell << " origin " << origin << " polyline " << n;
+                ASSERT_TRUE(same(fast, slow)) << "cell " << cell << " origin " << origin << " polyline " << n;
+                fast.clear();
+                alone.clear();
+                slow.clear();
+            }
+        }
+    }
+}
