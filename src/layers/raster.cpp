@@ -56,20 +56,6 @@ bool fix_floor(double v, int& out) {
     return fix_sure(f);
 }
 
-// Cells i0..i1 of a row's words, all inside the grid; none when i0 > i1.
-void or_span(std::uint64_t* row, int i0, int i1) {
-    if (i0 > i1) return;
-    const int w0 = i0 >> 6, w1 = i1 >> 6;
-    const std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63), hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
-    if (w0 == w1) {
-        row[w0] |= lo & hi;
-        return;
-    }
-    row[w0] |= lo;
-    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
-    row[w1] |= hi;
-}
-
 }  // namespace
 
 bool BitGrid::all_set_at(double x0, double y0, double dx, double dy, int n, int i_begin) const {

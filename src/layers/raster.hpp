@@ -20,6 +20,21 @@ struct CellBox {
     CellBox grown(int n) const { return empty() ? *this : CellBox{i0 - n, j0 - n, i1 + n, j1 + n}; }
 };
 
+// Sets cells i0..i1 of a row of 64-bit words, all inside the row; none
+// when i0 > i1.
+inline void or_span(std::uint64_t* row, int i0, int i1) {
+    if (i0 > i1) return;
+    const int w0 = i0 >> 6, w1 = i1 >> 6;
+    const std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63), hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
+    if (w0 == w1) {
+        row[w0] |= lo & hi;
+        return;
+    }
+    row[w0] |= lo;
+    for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
+    row[w1] |= hi;
+}
+
 class BitGrid {
 public:
     BitGrid() = default;
@@ -67,18 +82,7 @@ public:
         if (j < 0 || j >= ny_) return;
         i0 = std::max(i0, 0);
         i1 = std::min(i1, nx_ - 1);
-        if (i0 > i1) return;
-        std::uint64_t* row = &words_[static_cast<std::size_t>(j) * wpr_];
-        int w0 = i0 >> 6, w1 = i1 >> 6;
-        std::uint64_t lo = ~std::uint64_t{0} << (i0 & 63);
-        std::uint64_t hi = ~std::uint64_t{0} >> (63 - (i1 & 63));
-        if (w0 == w1) {
-            row[w0] |= lo & hi;
-            return;
-        }
-        row[w0] |= lo;
-        for (int w = w0 + 1; w < w1; ++w) row[w] = ~std::uint64_t{0};
-        row[w1] |= hi;
+        or_span(&words_[static_cast<std::size_t>(j) * wpr_], i0, i1);
     }
     const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
