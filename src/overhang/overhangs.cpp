@@ -200,12 +200,20 @@ struct Sample {
     double x, y, s;  // centre-line position and arc length along the piece
     float width;
     bool held;
+    std::size_t seg;  // the segment it lies on (the one from the sample before)
 };
 
-// Polyline through samples [a, b] at their beads' width.
+// Polyline through samples [a, b] at their beads' width: one line per
+// segment, not one per sample step (the steps of a segment are collinear
+// and of one width, so the set of cells is the same).
 void draw_samples(const std::vector<Sample>& p, std::size_t a, std::size_t b, layers::BitGrid& out) {
     if (a == b) out.draw_disc(p[a].x, p[a].y, p[a].width / 2);
-    for (std::size_t k = a + 1; k <= b; ++k) out.draw_segment(p[k - 1].x, p[k - 1].y, p[k].x, p[k].y, p[k].width);
+    for (std::size_t k = a + 1; k <= b;) {
+        std::size_t e = k;
+        while (e < b && p[e + 1].seg == p[k].seg) ++e;
+        out.draw_segment(p[k - 1].x, p[k - 1].y, p[e].x, p[e].y, p[k].width);
+        k = e + 1;
+    }
 }
 
 // A bead's unheld end this short is held (METHOD.md's rule (b)).
@@ -264,7 +272,7 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
             double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
             int ci, cj;
             if (!held.sure_cell(x, y, ci, cj)) ci = held.col(x), cj = held.row(y);
-            p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj)});
+            p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj), k});
         }
     }
     bool drew = false;
