@@ -33,11 +33,6 @@ double column_radius_at(const Column& c, double z, const Settings& s) {
 
 namespace {
 
-constexpr double kFootMinHeight = 3.0;  // report: feet only under pillars taller than 3 mm
-
-// The contact (top two layers of a tip) may come this close to the model.
-constexpr double kTipClearance = 0.2;
-
 // Whether model on `layer` lies within `reach` of the centre and of 16
 // points around the loop of radius rc.
 bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, double reach) {
@@ -90,8 +85,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(proto, layer.z, s);
         // Only the contact itself (the top two layers) may come close to the model.
-        bool tip = proto.top == Top::Contact && in_contact(proto, layer.z, s.layer_height);
-        double need = r + (tip ? kTipClearance : s.xy_gap);
+        double need = r + clearance_at(proto, layer.z, s);
         bool first = path.empty();
         if (trunks && !first && !trunks->at(l).empty()) {
             // Stand on a trunk whose loop here holds our loop above (its

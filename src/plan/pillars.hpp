@@ -54,6 +54,19 @@ inline bool in_contact(const Column& c, double z, double layer_height) {
     return c.contact_z > 0 && z > c.contact_z - 1.5 * layer_height;
 }
 
+// The contact of a tip may come this close to the model.
+inline constexpr double kTipClearance = 0.2;
+
+// Least distance a column keeps from the model at height z: the XY gap, or
+// kTipClearance in the contact of a column that touches the model (a tip
+// under a bridge end keeps the whole gap).
+inline double clearance_at(const Column& c, double z, const Settings& settings) {
+    return c.top == Top::Contact && in_contact(c, z, settings.layer_height) ? kTipClearance : settings.xy_gap;
+}
+
+// Feet only under pillars taller than this (the report's 3 mm).
+inline constexpr double kFootMinHeight = 3.0;
+
 // Radius of a column at height z (tip taper, foot flare, base radius).
 double column_radius_at(const Column& c, double z, const Settings& settings);
 

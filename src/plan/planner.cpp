@@ -12,9 +12,6 @@ namespace scaffold::plan {
 
 namespace {
 
-constexpr double kTipClearance = 0.2;  // the contact (top two layers) may come this close to the model
-constexpr double kFootMinHeight = 3.0; // report: feet only under pillars taller than 3 mm
-
 // A slanted column from the bar's top up to (tx, ty) under the active
 // point; nullopt when it leans more than printable on some layer or comes
 // within the gap of the model.
@@ -46,8 +43,7 @@ std::optional<Column> connector_to(const Candidate& b, const Active& a, double t
         if (!m.disc_clear) continue;
         double x, y;
         column_centre_at(c, z, x, y);
-        bool tip = in_contact(c, z, s.layer_height);
-        if (!m.disc_clear(z, x, y, column_radius_at(c, z, s) + (tip ? kTipClearance : s.xy_gap))) return std::nullopt;
+        if (!m.disc_clear(z, x, y, column_radius_at(c, z, s) + clearance_at(c, z, s))) return std::nullopt;
     }
     return c;
 }
