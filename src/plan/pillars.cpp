@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
 namespace scaffold::plan {
 
@@ -289,21 +290,27 @@ void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& sta
         }
 }
 
+std::vector<int> canonical_order(const overhang::SupportPoints& points) {
+    std::vector<int> order(points.points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+        const auto &p = points.points[a], &q = points.points[b];
+        return std::tie(p.layer, p.y, p.x, p.z) < std::tie(q.layer, q.y, q.x, q.z);
+    });
+    return order;
+}
+
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                       const Obstacles& obstacles, const Settings& settings) {
     // The report's simple pillars: vertical, no bridges, no leaning. Where a
     // pillar's straight way down meets a pillar already planned whose loop
     // holds its own, it stands on it: on a slope every layer's sliver gets a
     // point a fraction of a millimetre from the last, and pillars side by
-    // side would print the same ring many times over. Lower points first,
-    // so the higher stand on the lower.
-    std::vector<int> order(points.points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return points.points[a].layer < points.points[b].layer; });
+    // side would print the same ring many times over. Lower points first
+    // (the canonical order is by layer), so the higher stand on the lower.
     Trunks trunks(stack, 0.0);
     Scaffold out;
-    for (int i : order) {
+    for (int i : canonical_order(points)) {
         const auto& p = points.points[i];
         auto chain = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings, &trunks);
         if (!chain) {

@@ -43,6 +43,10 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
                                                const Settings& settings, const Trunks* trunks = nullptr);
 
+// Support point indices in a canonical order, so the plan does not depend
+// on the order of the input: place_points' own (layer, y, x), then z and index.
+std::vector<int> canonical_order(const overhang::SupportPoints& points);
+
 // --method pillars: a pillar under every support point.
 Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                       const Obstacles& obstacles, const Settings& settings);

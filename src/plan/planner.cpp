@@ -117,18 +117,6 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
     return out;
 }
 
-// Support point indices in a canonical order, so the plan does not depend
-// on the order of the input: place_points' own (layer, y, x), then z and index.
-std::vector<int> canonical_order(const overhang::SupportPoints& points) {
-    std::vector<int> order(points.points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-        const auto &p = points.points[a], &q = points.points[b];
-        return std::tie(p.layer, p.y, p.x, p.z) < std::tie(q.layer, q.y, q.x, q.z);
-    });
-    return order;
-}
-
 // A vertical pillar from the bed or the model's top up to the active point.
 std::optional<Column> vertical_pillar(const Active& a, const ModelView& m, const Settings& s) {
     Column c;
