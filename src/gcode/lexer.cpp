@@ -57,6 +57,17 @@ const char* read_number(const char* p, const char* end, double& value) {
     return r;
 }
 
+// Commands whose words change the machine state the reader tracks. Any
+// other command's parameters are only passed through, so a firmware's own
+// syntax there (Bambu's "M1002 gcode_claim_action : 2") is no error.
+const char* words(const char* p, const char* end, Command& out);
+
+bool strict(char letter, int code) {
+    if (letter == 'G') return code <= 3 || code == 10 || code == 11 || code == 20 || code == 21 || code == 28 || code == 92;
+    if (letter == 'M') return code == 82 || code == 83 || code == 106 || code == 107 || code == 200;
+    return false;
+}
+
 }  // namespace
 
 const char* lex(std::string_view line, Command& out) {
@@ -102,6 +113,19 @@ const char* lex(std::string_view line, Command& out) {
     if (frac > 1e-9) out.subcode = static_cast<int>(std::lround(frac * 10));
     p = q;
     if (free_text(c, out.code)) return "";
+    const char* err = words(p, end, out);
+    if (*err && !strict(c, out.code)) {
+        out.word_count = 0;
+        return "";
+    }
+    return err;
+}
+
+namespace {
+
+const char* words(const char* p, const char* end, Command& out) {
+    char c = out.letter;
+    auto skip = [&] { while (p < end && is_space(*p)) ++p; };
     while (true) {
         skip();
         if (p >= end) break;
@@ -128,5 +152,7 @@ const char* lex(std::string_view line, Command& out) {
     }
     return "";
 }
+
+}  // namespace
 
 }  // namespace scaffold::gcode

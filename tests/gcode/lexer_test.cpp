@@ -50,3 +50,19 @@ TEST(Lexer, MalformedNumbersAreReported) {
     EXPECT_STRNE(lex("G1 Xinf", c), "");
     EXPECT_STRNE(lex("G", c), "");
 }
+
+// A post-processor passes through what it does not need: only the commands
+// whose words change the tracked state are parsed strictly.
+TEST(Lexer, FirmwareSyntaxInOtherCommandsPassesThrough) {
+    Command c;
+    EXPECT_STREQ(lex("M1002 set_gcode_claim_speed_level : 5", c), "");
+    EXPECT_EQ(c.letter, 'M');
+    EXPECT_EQ(c.code, 1002);
+    EXPECT_EQ(c.word_count, 0);
+    EXPECT_STREQ(lex("M1002 gcode_claim_action : 2", c), "");
+    EXPECT_STREQ(lex("M624 AQAAAAAAAAA=", c), "");
+    EXPECT_STREQ(lex("M204 S10000 ; accel", c), "");
+    EXPECT_EQ(c.word_count, 1);
+    EXPECT_STRNE(lex("G1 X1 : 2", c), "");
+    EXPECT_STRNE(lex("M106 S1.2.3", c), "");
+}
