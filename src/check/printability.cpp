@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <numbers>
 
 #include "gcode/error.hpp"
 #include "gcode/lexer.hpp"
 #include "layers/layer_stack.hpp"
 #include "layers/raster.hpp"
+#include "layers/regions.hpp"
 
 namespace scaffold::check {
 
@@ -122,40 +124,24 @@ struct Sample {
     bool held;
 };
 
+// Whether a held sample lies within `reach` mm of the piece's end (from_end)
+// or start, measured along it.
+bool dangling_reach(const std::vector<Sample>& piece, bool from_end, double reach) {
+    if (piece.empty()) return false;
+    if (from_end) {
+        for (std::size_t k = piece.size(); k-- > 0 && piece.back().s - piece[k].s <= reach;)
+            if (piece[k].held) return true;
+    } else {
+        for (std::size_t k = 0; k < piece.size() && piece[k].s - piece.front().s <= reach; ++k)
+            if (piece[k].held) return true;
+    }
+    return false;
+}
+
 void add_issue(std::vector<LayerIssue>& v, LayerIssue issue, int keep) {
     v.push_back(issue);
     std::stable_sort(v.begin(), v.end(), [](const LayerIssue& a, const LayerIssue& b) { return a.area_mm2 > b.area_mm2; });
     if (static_cast<int>(v.size()) > keep) v.resize(keep);
-}
-
-// Area of the 8-connected regions (beads closer than 0.3 mm joined) of at
-// least `min_area` mm^2.
-double significant_area(const layers::BitGrid& g, double min_area) {
-    layers::BitGrid joined = g.dilated(0.3), seen = g;
-    seen.clear();
-    double total = 0;
-    std::vector<std::pair<int, int>> stack;
-    for (int j = 0; j < g.height(); ++j)
-        for (int i = 0; i < g.width(); ++i) {
-            if (!joined.get(i, j) || seen.get(i, j)) continue;
-            std::size_t cells = 0;
-            stack.assign(1, {i, j});
-            seen.set(i, j);
-            while (!stack.empty()) {
-                auto [a, b] = stack.back();
-                stack.pop_back();
-                cells += g.get(a, b);
-                for (int dj = -1; dj <= 1; ++dj)
-                    for (int di = -1; di <= 1; ++di)
-                        if (joined.get(a + di, b + dj) && !seen.get(a + di, b + dj)) {
-                            seen.set(a + di, b + dj);
-                            stack.emplace_back(a + di, b + dj);
-                        }
-            }
-            double area = static_cast<double>(cells) * g.cell_area();
-            if (area >= min_area) total += area;
-        }
-    return total;
 }
 
 LayerIssue issue_of(const layers::BitGrid& g, int layer, double z) {
@@ -172,6 +158,80 @@ LayerIssue issue_of(const layers::BitGrid& g, int layer, double z) {
     return is;
 }
 
+
+enum class ProblemKind { Width, EJump, OutsideBed };
+struct Problem {
+    std::uint32_t line;
+    ProblemKind kind;
+    std::string what;
+};
+struct Extrusion {
+    std::vector<Problem> problems;
+    double support_mm = 0, model_mm = 0;
+};
+
+// Extrusion sanity and filament, per move: implied widths, E pushed without
+// motion to lay it down, extrusion off the bed.
+template <class IsSupport>
+Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, IsSupport is_support) {
+    const double fd = settings.filament_diameter, nozzle = settings.nozzle_diameter;
+    Extrusion x;
+    auto note = [&](std::uint32_t line, ProblemKind kind, std::string what) { x.problems.push_back({line, kind, std::move(what)}); };
+    // E jumps: filament pushed without (enough) XY motion to lay it down.
+    // A prime may give back what was retracted plus retract_length + 0.5 mm
+    // (slicers' extra restart length); anything beyond is a jump.
+    const double prime_allowance = settings.retract_length + 0.5;
+    // Sane widths: 0.2x..3x the nozzle. The slicers' own model lines may go
+    // thinner (Slic3r ends infill with 0.6 mm pieces 0.07 mm wide): too little
+    // plastic is no printability hazard there, so the model's floor is 0.05x.
+    const double max_width = 3.0 * nozzle, min_support_width = 0.2 * nozzle, min_model_width = 0.05 * nozzle;
+    double retracted = 0;  // filament pulled back and not yet primed
+    for (const auto& m : p.moves) {
+        bool sup = is_support(m);
+        if (m.kind == gcode::MoveKind::Retract || m.kind == gcode::MoveKind::Wipe) retracted -= m.e;
+        if (m.kind == gcode::MoveKind::Extrude) (sup ? x.support_mm : x.model_mm) += m.e;
+        if (m.kind == gcode::MoveKind::Unretract) {
+            if (m.e - retracted > prime_allowance) {
+                note(m.line, ProblemKind::EJump, "E jump: " + fixed(m.e, 3) + " mm of filament without XY motion (" + fixed(retracted, 3) +
+                                 " mm were retracted)");
+            }
+            retracted = std::max(0.0, retracted - m.e);
+        }
+        if (m.kind != gcode::MoveKind::Extrude) continue;
+        double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
+        double h = m.z1 <= settings.first_layer_height + kZEps ? settings.first_layer_height : settings.layer_height;
+        // What a bead of the widest sane width would take over this length;
+        // the first extrusion after a retraction also primes.
+        double e_max = len * ((max_width - h) * h + std::numbers::pi * h * h / 4) / (std::numbers::pi * fd * fd / 4);
+        double primed = std::min(retracted, static_cast<double>(m.e));
+        retracted -= primed;
+        if (m.e - primed > e_max + prime_allowance) {
+            note(m.line, ProblemKind::EJump, "E jump: " + fixed(m.e, 3) + " mm of filament over " + fixed(len, 3) + " mm of motion");
+            continue;
+        }
+        if (m.x0 < settings.bed_min_x - 0.5 || m.x0 > settings.bed_max_x + 0.5 || m.y0 < settings.bed_min_y - 0.5 ||
+            m.y0 > settings.bed_max_y + 0.5 || m.x1 < settings.bed_min_x - 0.5 || m.x1 > settings.bed_max_x + 0.5 ||
+            m.y1 < settings.bed_min_y - 0.5 || m.y1 > settings.bed_max_y + 0.5) {
+            note(m.line, ProblemKind::OutsideBed, "extrusion outside the bed from (" + fixed(m.x0, 2) + ", " + fixed(m.y0, 2) + ") to (" +
+                             fixed(m.x1, 2) + ", " + fixed(m.y1, 2) + ")");
+        }
+        if (len < 0.5) continue;  // short pieces carry the rounding of E and XY
+        double w = layers::width_from_e(m.e - primed, len, h, fd);
+        const double min_width = sup ? min_support_width : min_model_width;
+        if (w < min_width || w > max_width) {
+            note(m.line, ProblemKind::Width, std::string(sup ? "support" : "model") + " extrusion " + fixed(w, 3) +
+                             " mm wide from its E (allowed " + fixed(min_width, 2) + ".." + fixed(max_width, 2) + ")");
+        }
+    }
+    return x;
+}
+
+// The first line of the first layer: what comes before is start code.
+std::uint32_t first_layer_start(const layers::LayerStack& stack) {
+    for (const layers::Layer& L : stack.layers)
+        if (!L.purge) return L.first_line;
+    return 0;
+}
 
 }  // namespace
 
@@ -249,10 +309,14 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     r.layers = static_cast<int>(stack.layers.size());
 
     std::vector<bool> inserted;
+    std::vector<std::uint32_t> out_to_original;  // per output line: the original's line, or kNone
     if (original) {
         r.compared = true;
         LineMatch match = match_lines(out, *original);
         inserted = std::move(match.inserted);
+        out_to_original.assign(out.lines.size(), kNone);
+        for (std::size_t k = 0; k < match.out_line.size(); ++k)
+            if (match.out_line[k] != kNone) out_to_original[match.out_line[k]] = static_cast<std::uint32_t>(k);
         r.model_lines_missing = match.missing;
         r.model_change = match.first_missing;
         // The lines found must also move the same: same start, end, E, feed.
@@ -278,60 +342,38 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         return gcode::is_support(m.role) || (!inserted.empty() && inserted[m.line]);
     };
 
-    // Extrusion sanity and filament, per move.
-    const double fd = settings.filament_diameter, nozzle = settings.nozzle_diameter;
-    auto note = [&](std::size_t line, const std::string& what) {
-        if (r.extrusion_notes.size() < 10) r.extrusion_notes.push_back("line " + std::to_string(line + 1) + ": " + what);
-    };
-    // E jumps: filament pushed without (enough) XY motion to lay it down.
-    // A prime may give back what was retracted plus retract_length + 0.5 mm
-    // (slicers' extra restart length); anything beyond is a jump.
-    const double prime_allowance = settings.retract_length + 0.5;
-    // Sane widths: 0.2x..3x the nozzle. The slicers' own model lines may go
-    // thinner (Slic3r ends infill with 0.6 mm pieces 0.07 mm wide): too little
-    // plastic is no printability hazard there, so the model's floor is 0.05x.
-    const double max_width = 3.0 * nozzle, min_support_width = 0.2 * nozzle, min_model_width = 0.05 * nozzle;
-    double retracted = 0;  // filament pulled back and not yet primed
-    for (const auto& m : out.moves) {
-        bool sup = is_support_move(m);
-        if (m.kind == gcode::MoveKind::Retract || m.kind == gcode::MoveKind::Wipe) retracted -= m.e;
-        if (m.kind == gcode::MoveKind::Extrude) (sup ? r.support_filament_mm : r.model_filament_mm) += m.e;
-        if (m.kind == gcode::MoveKind::Unretract) {
-            if (m.e - retracted > prime_allowance) {
-                ++r.e_jumps;
-                note(m.line, "E jump: " + fixed(m.e, 3) + " mm of filament without XY motion (" + fixed(retracted, 3) +
-                                 " mm were retracted)");
-            }
-            retracted = std::max(0.0, retracted - m.e);
-        }
-        if (m.kind != gcode::MoveKind::Extrude) continue;
-        double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
-        double h = m.z1 <= settings.first_layer_height + kZEps ? settings.first_layer_height : settings.layer_height;
-        // What a bead of the widest sane width would take over this length;
-        // the first extrusion after a retraction also primes.
-        double e_max = len * ((max_width - h) * h + std::numbers::pi * h * h / 4) / (std::numbers::pi * fd * fd / 4);
-        double primed = std::min(retracted, static_cast<double>(m.e));
-        retracted -= primed;
-        if (m.e - primed > e_max + prime_allowance) {
-            ++r.e_jumps;
-            note(m.line, "E jump: " + fixed(m.e, 3) + " mm of filament over " + fixed(len, 3) + " mm of motion");
+    // Extrusion sanity. The slicer's own start code (purge and prime before
+    // the first layer) and, with --original, what the original already did
+    // are reported apart: only what the edit added or broke fails.
+    const std::uint32_t first_layer_line = first_layer_start(stack);
+    const Extrusion ex = extrusion_problems(out, settings, is_support_move);
+    r.support_filament_mm = ex.support_mm;
+    r.model_filament_mm = ex.model_mm;
+    std::set<std::pair<std::uint32_t, int>> own;  // (original line, kind) the original had itself
+    if (original) {
+        const layers::LayerStack ostack = layers::build_layers(*original, settings);
+        const std::uint32_t ofirst = first_layer_start(ostack);
+        for (const Problem& q : extrusion_problems(*original, settings, [](const gcode::Move&) { return false; }).problems)
+            if (q.line >= ofirst) own.insert({q.line, static_cast<int>(q.kind)});
+    }
+    for (const Problem& q : ex.problems) {
+        if (q.line < first_layer_line) {
+            ++r.start_code_problems;
+            if (r.start_code_notes.size() < 5) r.start_code_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
             continue;
         }
-        if (m.x0 < settings.bed_min_x - 0.5 || m.x0 > settings.bed_max_x + 0.5 || m.y0 < settings.bed_min_y - 0.5 ||
-            m.y0 > settings.bed_max_y + 0.5 || m.x1 < settings.bed_min_x - 0.5 || m.x1 > settings.bed_max_x + 0.5 ||
-            m.y1 < settings.bed_min_y - 0.5 || m.y1 > settings.bed_max_y + 0.5) {
-            ++r.outside_bed;
-            note(m.line, "extrusion outside the bed from (" + fixed(m.x0, 2) + ", " + fixed(m.y0, 2) + ") to (" +
-                             fixed(m.x1, 2) + ", " + fixed(m.y1, 2) + ")");
+        if (!out_to_original.empty() && out_to_original[q.line] != kNone &&
+            own.count({out_to_original[q.line], static_cast<int>(q.kind)})) {
+            ++r.original_problems;
+            if (r.original_notes.size() < 5) r.original_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
+            continue;
         }
-        if (len < 0.5) continue;  // short pieces carry the rounding of E and XY
-        double w = layers::width_from_e(m.e - primed, len, h, fd);
-        const double min_width = sup ? min_support_width : min_model_width;
-        if (w < min_width || w > max_width) {
-            ++r.bad_extrusions;
-            note(m.line, std::string(sup ? "support" : "model") + " extrusion " + fixed(w, 3) +
-                             " mm wide from its E (allowed " + fixed(min_width, 2) + ".." + fixed(max_width, 2) + ")");
+        switch (q.kind) {
+            case ProblemKind::Width: ++r.bad_extrusions; break;
+            case ProblemKind::EJump: ++r.e_jumps; break;
+            case ProblemKind::OutsideBed: ++r.outside_bed; break;
         }
+        if (r.extrusion_notes.size() < 10) r.extrusion_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
     }
     r.print_time_s = estimate_print_time(out);
 
@@ -339,6 +381,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     const layers::BitGrid proto = layers::make_grid(stack, o.resolution, 5.0);
     const double slope = std::tan(o.overhang_angle_deg * std::numbers::pi / 180);
     const double h_nom = settings.layer_height;
+    const double max_bridge = o.max_bridge >= 0 ? o.max_bridge : settings.max_bridge;
     std::map<int, LayerGrids> cache;  // recent layers' model and support rasters
     auto grids = [&](int index) -> const LayerGrids& {
         auto it = cache.find(index);
@@ -357,6 +400,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         return cache.emplace(index, std::move(g)).first->second;
     };
     std::vector<std::pair<int, layers::BitGrid>> worst_grids;  // for the SVGs
+    std::vector<layers::Region> unheld_regions;                // in layer order
 
     // Support extruded twice on a layer: each support path (moves that follow
     // one another) drawn with half its width, cells already drawn by an
@@ -470,19 +514,26 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         // before would let a finely divided circle pass as one "straight"
         // bridge (a 97-gon turns 3.7 deg per segment).
         std::vector<std::vector<Sample>> pieces;
+        std::vector<double> piece_limit;  // the span each piece may bridge
+        std::vector<char> piece_joined;   // continues the piece before it on one path (a corner)
         double piece_ux = 0, piece_uy = 0;
         const double cos_straight = std::cos(kStraightDeg * std::numbers::pi / 180);
         for (std::size_t k = 0; k < segs.size(); ++k) {
             const auto& sg = segs[k];
             double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
             bool joins = false;
+            const double limit = is_support_move(out.moves[sg.move]) || gcode::is_bridge(sg.role) ? o.bridge_limit : max_bridge;
             if (k > 0 && !pieces.empty() && len > 0) {
                 const auto& pv = segs[k - 1];
-                bool same_path = sg.move == pv.move + 1 && is_support_move(out.moves[sg.move]) == is_support_move(out.moves[pv.move]);
+                bool same_path = sg.move == pv.move + 1 && limit == piece_limit.back();
                 joins = same_path && (dx * piece_ux + dy * piece_uy) / len >= cos_straight;
             }
             if (!joins) {
+                const bool corner = k > 0 && !pieces.empty() && sg.move == segs[k - 1].move + 1 &&
+                                    std::abs(sg.x0 - segs[k - 1].x1) < 1e-3f && std::abs(sg.y0 - segs[k - 1].y1) < 1e-3f;
                 pieces.emplace_back();
+                piece_limit.push_back(limit);
+                piece_joined.push_back(corner);
                 piece_ux = len > 0 ? dx / len : 0;
                 piece_uy = len > 0 ? dy / len : 0;
             }
@@ -507,8 +558,21 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 if (!sm.held && enclosed.get(enclosed.col(sm.x), enclosed.row(sm.y))) sm.held = true;
 
         // (b) unheld runs of a straight piece, held at both ends within the
-        // bridge limit, or a short dangling end.
-        for (auto& piece : pieces) {
+        // bridge limit, or a short dangling end. Where a path turns, the
+        // corner is held when the piece on either side is held within a
+        // dangling end of it: that stretch is held by (b) itself.
+        std::vector<std::pair<char, char>> joint_held(pieces.size(), {0, 0});
+        for (std::size_t q = 1; q < pieces.size(); ++q) {
+            if (!piece_joined[q]) continue;
+            joint_held[q].first = dangling_reach(pieces[q - 1], true, o.dangling_end);
+            joint_held[q - 1].second = dangling_reach(pieces[q], false, o.dangling_end);
+        }
+        for (std::size_t q = 0; q < pieces.size(); ++q) {
+            if (joint_held[q].first) pieces[q].front().held = true;
+            if (joint_held[q].second) pieces[q].back().held = true;
+        }
+        for (std::size_t q = 0; q < pieces.size(); ++q) {
+            auto& piece = pieces[q];
             std::size_t i = 0;
             while (i < piece.size()) {
                 if (piece[i].held) { ++i; continue; }
@@ -518,7 +582,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 double s_a = start_held ? piece[i - 1].s : piece[i].s;
                 double s_b = end_held ? piece[j].s : piece[j - 1].s;
                 double span = s_b - s_a;
-                bool ok = (start_held && end_held && span <= o.bridge_limit) ||
+                bool ok = (start_held && end_held && span <= piece_limit[q]) ||
                           ((start_held != end_held) && span <= o.dangling_end);
                 if (ok)
                     for (std::size_t k = i; k < j; ++k) piece[k].held = true;
@@ -555,7 +619,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         r.unheld_support_mm2 += as;
         layers::BitGrid both = unheld_model;
         both |= unheld_support;
-        r.unheld_regions_mm2 += o.min_region_mm2 > 0 ? significant_area(both, o.min_region_mm2) : am + as;
+        for (auto& cells : layers::regions(both, layers::kRegionJoin))
+            unheld_regions.push_back(layers::make_region(std::move(cells), L, layer.z));
         LayerIssue is = issue_of(both, L, layer.z);
         add_issue(r.worst_unheld, is, o.worst);
         if (!svg_dir.empty()) {
@@ -586,11 +651,17 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         }
     }
 
+    // The speck rule the detector applies (METHOD.md): lone unheld specks
+    // under min_region_mm2 that continue nothing above or below are noise.
+    const std::vector<char> counts = o.min_region_mm2 > 0 ? layers::kept_regions(unheld_regions, proto, h_nom, o.min_region_mm2)
+                                                          : std::vector<char>(unheld_regions.size(), 1);
+    for (std::size_t k = 0; k < unheld_regions.size(); ++k)
+        if (counts[k]) r.unheld_regions_mm2 += static_cast<double>(unheld_regions[k].cells.size()) * proto.cell_area();
     if (r.unheld_regions_mm2 > o.tolerance_mm2) {
         std::string what = "unheld area " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
                            fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + ")";
         if (o.min_region_mm2 > 0)
-            what += ", " + fixed(r.unheld_regions_mm2, 2) + " mm^2 of it in regions of " + fixed(o.min_region_mm2, 2) + " mm^2 or more";
+            what += ", " + fixed(r.unheld_regions_mm2, 2) + " mm^2 of it not lone specks under " + fixed(o.min_region_mm2, 2) + " mm^2";
         r.failures.push_back(what + ", more than the " + fixed(o.tolerance_mm2, 2) + " mm^2 tolerance");
     }
     if (r.collision_mm2 > 0) r.failures.push_back("support within the XY gap of the model: " + fixed(r.collision_mm2, 2) + " mm^2");
@@ -620,6 +691,16 @@ std::string report_text(const CheckReport& r) {
     o += "  extrusion: " + std::to_string(r.bad_extrusions) + " bad widths, " + std::to_string(r.e_jumps) + " E jumps, " +
          std::to_string(r.outside_bed) + " outside the bed\n";
     for (const auto& n : r.extrusion_notes) o += "    " + n + "\n";
+    if (r.start_code_problems) {
+        o += "  the slicer's start code (purge and prime before the first layer; not a failure): " +
+             std::to_string(r.start_code_problems) + " extrusion notes\n";
+        for (const auto& n : r.start_code_notes) o += "    " + n + "\n";
+    }
+    if (r.original_problems) {
+        o += "  the original's own (lines the edit left alone; not a failure): " + std::to_string(r.original_problems) +
+             " extrusion notes\n";
+        for (const auto& n : r.original_notes) o += "    " + n + "\n";
+    }
     if (r.compared)
         o += std::string("  model vs original: ") +
              (r.model_unchanged ? "unchanged"
@@ -667,6 +748,8 @@ std::string report_json(const CheckReport& r) {
     o += "  \"bad_extrusions\": " + std::to_string(r.bad_extrusions) + ",\n";
     o += "  \"e_jumps\": " + std::to_string(r.e_jumps) + ",\n";
     o += "  \"outside_bed\": " + std::to_string(r.outside_bed) + ",\n";
+    o += "  \"start_code_problems\": " + std::to_string(r.start_code_problems) + ",\n";
+    o += "  \"original_problems\": " + std::to_string(r.original_problems) + ",\n";
     o += std::string("  \"model_unchanged\": ") + (r.model_unchanged ? "true" : "false") + ",\n";
     o += "  \"model_lines_missing\": " + std::to_string(r.model_lines_missing) + ",\n";
     o += "  \"model_moves_changed\": " + std::to_string(r.model_moves_changed) + ",\n";

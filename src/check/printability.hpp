@@ -16,7 +16,11 @@ struct CheckOptions {
     double overhang_angle_deg = 55;
     double xy_gap = 0.5;
     double point_radius = 3.5;
-    double bridge_limit = 30;      // mm, for straight spans held at both ends
+    // Straight spans held at both ends (METHOD's rule (b)): up to
+    // bridge_limit for support and the slicer's marked bridges, up to
+    // max_bridge for any other bead (< 0: the file's setting, else 10).
+    double bridge_limit = 30;
+    double max_bridge = -1;
     double dangling_end = 1.0;     // mm, unheld ends this short are held
     double resolution = 0.1;
     // Unheld area allowed per file, for raster noise: a centre-line sample
@@ -25,10 +29,10 @@ struct CheckOptions {
     // one bead, far below any real overhang (the corpus inputs have 36 to
     // 1145 mm^2).
     double tolerance_mm2 = 0.5;
-    // Unheld specks in regions smaller than this (per layer) do not count
-    // towards failure. 0 (default): every unheld cell counts; the planner's
-    // own thresholds are no reason for the validator to look away.
-    double min_region_mm2 = 0;
+    // METHOD's speck rule, as the detector's --min-overhang-area applies it:
+    // a lone unheld region smaller than this that continues no unheld region
+    // a layer or two above or below does not count. 0: every cell counts.
+    double min_region_mm2 = 1.0;
     int worst = 5;                 // worst layers listed
 };
 
@@ -56,6 +60,13 @@ struct CheckReport {
     int e_jumps = 0;               // large E without motion
     int outside_bed = 0;           // extrusions off the bed
     std::vector<std::string> extrusion_notes;  // first few, with line numbers
+    // Reported, not failures: the slicer's start code (purge and prime
+    // before the first layer), and with --original what the original did
+    // itself on lines the edit left alone.
+    int start_code_problems = 0;
+    std::vector<std::string> start_code_notes;
+    int original_problems = 0;
+    std::vector<std::string> original_notes;
     bool compared = false;         // --original given
     bool model_unchanged = true;
     std::string model_change;      // first difference, when changed

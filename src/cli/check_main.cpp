@@ -25,11 +25,12 @@ int main(int argc, char** argv) {
         ("json", "print the report as JSON")
         ("svg", po::value<std::string>(), "draw the worst layers (model grey, support blue, unheld red) into DIR")
         ("tolerance-mm2", po::value<double>(&o.tolerance_mm2)->default_value(o.tolerance_mm2), "unheld area accepted per file as raster noise, mm^2 (about a 1 mm stretch of one bead)")
-        ("min-region-mm2", po::value<double>(&o.min_region_mm2)->default_value(o.min_region_mm2), "unheld regions smaller than this (per layer) are reported but not counted against the tolerance, mm^2; 0 counts every unheld cell")
+        ("min-region-mm2", po::value<double>(&o.min_region_mm2)->default_value(o.min_region_mm2), "lone unheld regions smaller than this (that continue none on the layers just above or below) are reported but not counted against the tolerance, mm^2: the speck rule scaffold's --min-overhang-area applies; 0 counts every unheld cell")
         ("overhang-angle", po::value<double>(&o.overhang_angle_deg)->default_value(o.overhang_angle_deg), "steepest self-supporting wall, degrees from vertical")
         ("xy-gap", po::value<double>(&o.xy_gap)->default_value(o.xy_gap), "least horizontal distance from support to model, mm")
         ("point-radius", po::value<double>(&o.point_radius)->default_value(o.point_radius), "radius a support contact tip holds, mm")
-        ("bridge-limit", po::value<double>(&o.bridge_limit)->default_value(o.bridge_limit), "longest straight span held at both ends, mm")
+        ("bridge-limit", po::value<double>(&o.bridge_limit)->default_value(o.bridge_limit), "longest straight span of support or of a slicer-marked bridge held at both ends, mm")
+        ("max-bridge", po::value<double>(&o.max_bridge), "longest straight span of any other bead held at both ends, mm (default: the file's max_bridge_length, else 10)")
         ("resolution", po::value<double>(&o.resolution)->default_value(o.resolution, "0.1"), "raster cell, mm")
         ("quiet,q", "print nothing; only the exit status");
     po::options_description hidden;

@@ -100,7 +100,9 @@ void run(const Request& req, spdlog::logger& log) {
         log.info("--method none: written unchanged");
         return;
     }
-    if (settings.spiral_vase)
+    // A vase is recognised by its setting or, where the file has none (Cura
+    // hands scripts no settings), by Z rising through its extrusions.
+    if (settings.spiral_vase || layers::z_motion(program).spiral())
         throw Error(program.path, 0, "spiral vase mode is not supported: a vase is one continuous wall with no place for supports");
     if (settings.sequential_printing)
         throw Error(program.path, 0, "sequential printing (complete objects) is not supported: supports would be printed "
@@ -131,6 +133,14 @@ void run(const Request& req, spdlog::logger& log) {
     // 0, 150 points: 17 s), so say so.
     if (big || (settings.method == Method::Scaffold && points.points.size() >= 120))
         log.info("{} support points; planning...", points.points.size());
+
+    // Bed levelling baked into the file moves the model's Z with the bed's
+    // mesh; support at the layers' nominal heights would not follow it.
+    if (stack.z_varies && !points.points.empty())
+        throw Error(program.path, 0, "Z varies within layers (bed levelling applied by the slicer) and " +
+                                         std::to_string(points.points.size()) +
+                                         " support points are needed: support cannot follow the bed mesh; "
+                                         "slice with levelling left to the printer");
 
     auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
     const plan::Scaffold scaffold = settings.method == Method::Pillars

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     detect.add_options()
         ("resolution", po::value<std::string>(), ("raster cell size, mm (default " + num(d.resolution) + ")").c_str())
         ("overhang-angle", po::value<std::string>(), ("steepest self-supporting wall, degrees from vertical (default " + num(d.overhang_angle_deg) + ")").c_str())
-        ("max-bridge", po::value<std::string>(), "longest span a slicer-marked bridge may cross unsupported, mm (default: the slicer's setting, else 10)")
+        ("max-bridge", po::value<std::string>(), "longest straight span a bead may cross between held ends without support, mm (default: the slicer's max_bridge_length, else 10); the slicer's marked bridges span up to 30")
         ("min-overhang-area", po::value<std::string>(), ("ignore lone overhang regions smaller than this, mm^2 (default " + num(d.min_overhang_area) + "; one that continues over two or more layers always counts; 0 supports every speck)").c_str())
         ("point-spacing", po::value<std::string>(), ("grid spacing of support points, mm (default " + num(d.point_spacing) + ")").c_str())
         ("point-radius", po::value<std::string>(), ("radius of overhang one point holds, mm (default " + num(d.point_radius) + ")").c_str());

@@ -67,7 +67,10 @@ void parse_cura_settings(const std::string& json, std::map<std::string, std::str
     text.reserve(json.size());
     for (std::size_t i = 0; i < json.size(); ++i) {
         if (json[i] == '\\' && i + 1 < json.size()) {
+            // Cura 4.13 escapes the INI's newlines once ("\n"), Cura 4.9 and
+            // earlier twice ("\\n"): both end a line.
             char n = json[++i];
+            if (n == '\\' && i + 1 < json.size() && json[i + 1] == 'n') n = json[++i];
             text += n == 'n' ? '\n' : n;
         } else {
             text += json[i] == '"' ? '\n' : json[i];

@@ -172,7 +172,7 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
     }
     // Slic3r-family files may list a bridge limit; otherwise the issue default.
     l.number({"max_bridge_length", "bridge_max_length"}, s.slicer_max_bridge);
-    s.max_bridge = s.slicer_max_bridge;
+    if (s.slicer_max_bridge > 0) s.max_bridge = s.slicer_max_bridge;
 
     // Options of scaffold itself (command line only, keyed "--name" so they never meet a slicer key).
     l.number({"--resolution"}, s.resolution);

@@ -38,7 +38,11 @@ struct Settings {
     // --- detection ---
     double resolution = 0.1;          // raster cell mm
     double overhang_angle_deg = 55;
-    double max_bridge = 10;           // slicer-marked bridges held up to this span
+    // METHOD's rule (b): a straight bead spans an unheld run between held
+    // ends up to max_bridge (any bead: slicers print unmarked skin lines
+    // across such gaps), a slicer-marked bridge up to marked_bridge_limit.
+    double max_bridge = 10;
+    double marked_bridge_limit = 30;
     double min_overhang_area = 1.0;   // mm^2
     double point_spacing = 5.0;       // mm
     double point_radius = 3.5;        // mm a point holds around itself

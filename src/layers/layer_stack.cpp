@@ -21,11 +21,46 @@ constexpr double kZEps = 1e-4;
 
 bool extrudes(const gcode::Move& m) { return m.kind == gcode::MoveKind::Extrude; }
 
+// A levelled file's layers carry the slicer's nominal heights: each layer's
+// z is the previous one's plus the height its comment gives (;Z: where
+// given), else its lowest extrusion's z.
+void nominal_heights(const gcode::Program& program, LayerStack& stack) {
+    std::size_t hint = 0;
+    double z = 0;
+    for (Layer& L : stack.layers) {
+        double lowest = 1e300;
+        for (const Segment& s : L.segments) lowest = std::min(lowest, static_cast<double>(program.moves[s.move].z1));
+        const gcode::LayerHint* h = nullptr;
+        while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= L.last_extrusion_line)
+            h = &program.layer_hints[hint++];
+        if (h && h->z > 0) z = h->z;
+        else if (h && h->height > 0) z += h->height;
+        else z = lowest;
+        L.z = z;
+    }
+}
+
 }  // namespace
+
+ZMotion z_motion(const gcode::Program& program) {
+    ZMotion z;
+    for (const gcode::Move& m : program.moves) {
+        if (!extrudes(m)) continue;
+        ++z.extrusions;
+        if (m.z1 > m.z0 + kZEps) ++z.rising;
+        else if (m.z1 < m.z0 - kZEps) ++z.falling;
+    }
+    return z;
+}
 
 LayerStack build_layers(const gcode::Program& program, const Settings& settings) {
     LayerStack stack;
     const auto& moves = program.moves;
+    // Bed levelling baked into the file (MatterControl): Z rises and falls
+    // within a layer, so a layer is what lies between the slicer's layer
+    // comments, not a distinct Z.
+    const ZMotion zm = z_motion(program);
+    stack.z_varies = program.layer_hints.size() >= 2 && zm.levelled();
     std::size_t hint = 0;               // next layer hint to consider
     std::uint32_t last_z_change = 0;    // line of the latest move that changed Z
     bool have_z_change = false;
@@ -37,7 +72,12 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
         if (m.z1 != m.z0) { last_z_change = m.line; have_z_change = true; }
         if (!extrudes(m)) continue;
         double z = m.z1;
-        if (!any || std::abs(z - stack.layers.back().z) > kZEps) {
+        bool starts = !any || std::abs(z - stack.layers.back().z) > kZEps;
+        if (stack.z_varies && any) {
+            starts = hint < program.layer_hints.size() && program.layer_hints[hint].line <= m.line &&
+                     program.layer_hints[hint].line > prev_last_extrusion;
+        }
+        if (starts) {
             Layer layer;
             layer.z = z;
             // Boundary: the slicer's layer comment if one lies between the two
@@ -67,12 +107,24 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     }
     if (!any) throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
     stack.layers.back().end_line = static_cast<std::uint32_t>(program.lines.size());
+    if (stack.z_varies) nominal_heights(program, stack);
 
     // Heights and the layer beneath: by z, ignoring anything printed before
-    // the lowest layer (a purge line at the start rests on the bed).
+    // the first layer (a purge line at the start rests on the bed). The
+    // first layer is the lowest one, or the first one the slicer marked as a
+    // layer where that is higher: everything at or below its height rests on
+    // the bed (PrusaSlicer's intro line at Z 0.2 under a 0.3 mm first layer).
     std::size_t lowest = 0;
     for (std::size_t i = 1; i < stack.layers.size(); ++i)
         if (stack.layers[i].z < stack.layers[lowest].z - kZEps) lowest = i;
+    if (!program.layer_hints.empty()) {
+        const std::uint32_t first_hint = program.layer_hints.front().line;
+        for (std::size_t i = 0; i < stack.layers.size(); ++i)
+            if (stack.layers[i].last_extrusion_line > first_hint) {
+                if (stack.layers[i].z > stack.layers[lowest].z + kZEps) lowest = i;
+                break;
+            }
+    }
     double min_z = stack.layers[lowest].z;
     // The bounds in the same pass (from the lowest layer on, in order),
     // while each layer's segments are at hand.

@@ -34,10 +34,22 @@ struct Layer {
     std::vector<Segment> segments;
 };
 
+// How Z moves while extruding: a spiral vase rises and never falls, bed
+// levelling baked into the file (Z following the bed's mesh) does both.
+struct ZMotion {
+    std::size_t extrusions = 0, rising = 0, falling = 0;
+    bool spiral() const { return rising > 200 && rising * 4 > extrusions && falling * 20 < rising; }
+    bool levelled() const { return !spiral() && rising + falling > 50 && (rising + falling) * 20 > extrusions; }
+};
+ZMotion z_motion(const gcode::Program& program);
+
 struct LayerStack {
     std::vector<Layer> layers;  // in file order; z increases except for a purge
                                 // line printed before the first layer (on_bed)
     Bounds bounds;              // XY of all extrusions (model and skirt)
+    bool z_varies = false;      // Z changes within layers (bed levelling in the
+                                // file): layers come from the slicer's comments
+                                // and carry nominal heights
 };
 
 // Width of a bead from filament used, its length and layer height

@@ -1,5 +1,7 @@
 #include "overhang/overhangs.hpp"
 
+#include "layers/regions.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -10,70 +12,13 @@
 
 namespace scaffold::overhang {
 
-// Neighbours read three cells a row away from the grid's edge; the
-// order of discovery is the cell-by-cell search's.
-std::vector<std::vector<Cell>> components(const layers::BitGrid& g) {
-    layers::BitGrid seen(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
-                         g.origin_y() + g.height() * g.cell(), g.cell());
-    std::vector<std::vector<Cell>> out;
-    std::vector<Cell> stack;
-    const int wpr = g.words_per_row(), nx = g.width(), ny = g.height();
-    // Set and unseen cells i - 1 .. i + 1 of row j as bits 0..2 (i - 1 >= 0, i + 1 < nx).
-    auto fresh3 = [&](int i, int j) {
-        const std::uint64_t* a = g.row_words(j);
-        const std::uint64_t* b = seen.row_words(j);
-        const int lo = i - 1, w = lo >> 6, sh = lo & 63;
-        std::uint64_t v = (a[w] & ~b[w]) >> sh;
-        if (sh > 61) v |= (a[w + 1] & ~b[w + 1]) << (64 - sh);
-        return v & 7u;
-    };
-    for (int j = 0; j < ny; ++j) {
-        for (int w = 0; w < wpr; ++w) {
-            // Cells already seen (reached from an earlier row) are skipped a word at a time.
-            std::uint64_t bits = g.row_words(j)[w] & ~seen.row_words(j)[w];
-            while (bits) {
-                int i = w * 64 + std::countr_zero(bits);
-                bits &= bits - 1;
-                if (seen.get(i, j)) continue;
-                std::vector<Cell> comp;
-                stack.push_back({i, j});
-                seen.set(i, j);
-                while (!stack.empty()) {
-                    Cell c = stack.back();
-                    stack.pop_back();
-                    comp.push_back(c);
-                    if (c.i >= 1 && c.i + 1 < nx && c.j >= 1 && c.j + 1 < ny) {
-                        // The same neighbours in the same order, read a row at a time.
-                        const std::uint64_t rows[3] = {fresh3(c.i, c.j - 1), fresh3(c.i, c.j) & 5u, fresh3(c.i, c.j + 1)};
-                        for (int dj = -1; dj <= 1; ++dj)
-                            for (std::uint64_t m = rows[dj + 1]; m; m &= m - 1) {
-                                const int a = c.i - 1 + std::countr_zero(m), b = c.j + dj;
-                                seen.set(a, b);
-                                stack.push_back({a, b});
-                            }
-                        continue;
-                    }
-                    for (int dj = -1; dj <= 1; ++dj)
-                        for (int di = -1; di <= 1; ++di) {
-                            int a = c.i + di, b = c.j + dj;
-                            if ((di || dj) && g.get(a, b) && !seen.get(a, b)) {
-                                seen.set(a, b);
-                                stack.push_back({a, b});
-                            }
-                        }
-                }
-                out.push_back(std::move(comp));
-                bits &= ~seen.row_words(j)[w];
-            }
-        }
-    }
-    return out;
-}
+using layers::Region;
+using layers::kept_regions;
+using layers::regions;
 
 namespace {
 
-// Beads closer than this belong to one overhang region.
-constexpr double kJoin = 0.6;
+constexpr double kJoin = layers::kRegionJoin;
 
 
 // One point per grid bin of `cells`, on the cell nearest the bin's centroid.
@@ -160,20 +105,6 @@ std::vector<SupportPoint> cover_region(const layers::BitGrid& g, const std::vect
     return pts;
 }
 
-// Overhang regions: cells of `g` grouped by the components of `g` grown by
-// `join` mm, so the parallel lines of one bridge or skin make one region.
-std::vector<std::vector<Cell>> regions(const layers::BitGrid& g, double join) {
-    std::vector<std::vector<Cell>> out;
-    for (auto& comp : components(g.dilated(join))) {
-        std::vector<Cell> cells;
-        for (const Cell& c : comp)
-            if (g.get(c.i, c.j)) cells.push_back(c);
-        std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
-        if (!cells.empty()) out.push_back(std::move(cells));
-    }
-    return out;
-}
-
 // Consecutive moves of one extrusion path turning by less than this make
 // one straight piece, as in METHOD.md's rule (b) and scaffold-check.
 constexpr double kStraightDeg = 10;
@@ -194,6 +125,11 @@ bool continues_straight(const layers::Segment& first, const layers::Segment& a, 
     if (double c = (fdx * bdx + fdy * bdy) / (lf * lb); std::abs(c - limit) > 1e-9) return c >= limit;
     lf = std::hypot(fdx, fdy), lb = std::hypot(bdx, bdy);
     return (fdx * bdx + fdy * bdy) / (lf * lb) >= limit;
+}
+
+// Does b start where a ends, next on the same path?
+bool joined(const layers::Segment& a, const layers::Segment& b) {
+    return b.move == a.move + 1 && std::abs(b.x0 - a.x1) < 1e-3f && std::abs(b.y0 - a.y1) < 1e-3f;
 }
 
 struct Sample {
@@ -218,9 +154,6 @@ void draw_samples(const std::vector<Sample>& p, std::size_t a, std::size_t b, la
 
 // A bead's unheld end this short is held (METHOD.md's rule (b)).
 constexpr double kDanglingEnd = 1.0;
-// Any bead, marked bridge or not, spans an unheld run this short between
-// two held parts: slicers leave such runs unmarked at a slope's edge.
-constexpr double kShortSpan = 2.0;
 
 }  // namespace
 
@@ -252,16 +185,11 @@ bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t firs
     return true;
 }
 
-// Segments [first, last] (one straight piece of one path): an unheld run of
-// the centre line held on both sides and no longer than `max_span` is
-// spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
+// The centre-line samples of segments [first, last], at most `step` apart.
 // Each piece is judged on its own, as the validator does: a held span keeps
-// its own bead from being overhang, not the beads it overlaps. Returns
-// whether it drew.
-bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
-                    const layers::BitGrid& held, double step, double max_span, layers::BitGrid& over,
-                    std::vector<Sample>& p) {
-    if (all_samples_held(segs, first, last, held, step)) return false;  // nothing to draw
+// its own bead from being overhang, not the beads it overlaps.
+void piece_samples(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                   const layers::BitGrid& held, double step, std::vector<Sample>& p) {
     p.clear();
     for (std::size_t k = first; k <= last; ++k) {
         const layers::Segment& sg = segs[k];
@@ -275,6 +203,36 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
             p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj), k});
         }
     }
+}
+
+// Whether a held sample lies within a dangling end (1 mm) of the piece's
+// start (or end), along it.
+bool held_near_end(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                   const layers::BitGrid& held, double step, bool at_end, std::vector<Sample>& p) {
+    if (all_samples_held(segs, first, last, held, step)) return true;
+    piece_samples(segs, first, last, held, step, p);
+    if (at_end) {
+        for (std::size_t k = p.size(); k-- > 0 && p.back().s - p[k].s <= kDanglingEnd;)
+            if (p[k].held) return true;
+    } else {
+        for (std::size_t k = 0; k < p.size() && p[k].s - p.front().s <= kDanglingEnd; ++k)
+            if (p[k].held) return true;
+    }
+    return false;
+}
+
+// Segments [first, last] (one straight piece of one path): an unheld run of
+// the centre line held on both sides and no longer than `max_span` is
+// spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
+// A corner where the path turns counts as held when the piece beyond it is
+// held within a dangling end (first_held / last_held). Returns whether it drew.
+bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
+                    const layers::BitGrid& held, double step, double max_span, bool first_held, bool last_held,
+                    layers::BitGrid& over, std::vector<Sample>& p) {
+    if (all_samples_held(segs, first, last, held, step)) return false;  // nothing to draw
+    piece_samples(segs, first, last, held, step, p);
+    if (first_held) p.front().held = true;
+    if (last_held) p.back().held = true;
     bool drew = false;
     for (std::size_t i = 0; i < p.size();) {
         if (p[i].held) { ++i; continue; }
@@ -292,74 +250,6 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
     return drew;
 }
 
-// One connected overhang region of one layer.
-struct Region {
-    int layer = 0;
-    double z = 0;
-    int i0 = 0, i1 = 0, j0 = 0, j1 = 0;  // cell bounds
-    std::vector<Cell> cells;
-};
-
-// Regions on layers at most this many nominal layer heights apart, whose
-// cells come within kChainJoin of each other, continue one another (the
-// edge of a slope may move along by a millimetre or two a layer).
-constexpr double kChainJoin = 1.5;
-constexpr double kChainLayers = 2.5;
-
-int find_root(std::vector<int>& parent, int k) {
-    while (parent[k] != k) k = parent[k] = parent[parent[k]];
-    return k;
-}
-
-// Whether each region counts: regions are chained when one continues the
-// other from a layer just below (union-find over pairs that pass a
-// bounding-box test, then a cell-distance test); a chain over two or more
-// layers always counts, a lone region from `min_area` mm^2 up.
-std::vector<char> kept_regions(const std::vector<Region>& rs, const layers::BitGrid& g, double layer_height,
-                               double min_area) {
-    const int n = static_cast<int>(rs.size());
-    std::vector<int> parent(n);
-    for (int k = 0; k < n; ++k) parent[k] = k;
-    const int pad = static_cast<int>(std::ceil(kChainJoin / g.cell()));
-    const double window = kChainLayers * layer_height + 1e-6;
-    for (int k = 0; k < n; ++k) {
-        const Region& a = rs[k];
-        layers::BitGrid near;  // a's cells grown by kChainJoin, built on first use
-        for (int q = k - 1; q >= 0; --q) {
-            const Region& b = rs[q];
-            if (b.layer == a.layer) continue;
-            if (a.z - b.z > window || b.z >= a.z) {
-                if (a.layer - b.layer > 64) break;  // far back in the file: no more candidates
-                continue;
-            }
-            if (b.i1 < a.i0 - pad || b.i0 > a.i1 + pad || b.j1 < a.j0 - pad || b.j0 > a.j1 + pad) continue;
-            if (find_root(parent, k) == find_root(parent, q)) continue;
-            if (near.width() == 0) {
-                near = layers::BitGrid(g.origin_x() + (a.i0 - pad) * g.cell(), g.origin_y() + (a.j0 - pad) * g.cell(),
-                                       g.origin_x() + (a.i1 + pad + 1) * g.cell(), g.origin_y() + (a.j1 + pad + 1) * g.cell(),
-                                       g.cell());
-                for (const Cell& c : a.cells) near.set(c.i - a.i0 + pad, c.j - a.j0 + pad);
-                near = near.dilated(kChainJoin);
-            }
-            bool touches = std::any_of(b.cells.begin(), b.cells.end(),
-                                       [&](const Cell& c) { return near.get(c.i - a.i0 + pad, c.j - a.j0 + pad); });
-            if (touches) parent[find_root(parent, k)] = find_root(parent, q);
-        }
-    }
-    std::vector<double> sum(n, 0.0);
-    std::vector<int> members(n, 0);
-    for (int k = 0; k < n; ++k) {
-        sum[find_root(parent, k)] += static_cast<double>(rs[k].cells.size()) * g.cell_area();
-        members[find_root(parent, k)]++;
-    }
-    std::vector<char> out(n);
-    for (int k = 0; k < n; ++k) {
-        const int root = find_root(parent, k);
-        out[k] = members[root] >= 2 || sum[root] >= min_area;
-    }
-    return out;
-}
-
 // The overhang regions of layers [first, end), in layer order. Each layer's
 // depend on it and the layer beneath only, so ranges can run in parallel.
 void find_regions_in(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto, int first,
@@ -375,6 +265,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     bool below_has_skirt = false, over_drawn = false;
     int below_index = -1, over_index = -1;  // over_box is layer_box of layer over_index
     std::vector<Sample> samples;
+    std::vector<std::pair<std::size_t, std::size_t>> pieces;  // first, last segment of each straight piece
     for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
@@ -401,38 +292,41 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         over_index = n;
         over_drawn = false;
         const auto& segs = layer.segments;
+        // A bead is held where its centre line is held (METHOD.md's rule,
+        // the one scaffold-check applies): only the unheld stretches of the
+        // centre line make overhang, drawn at the bead's width. The span is
+        // the whole straight piece, not one move: slicers split bridge lines
+        // and overhang perimeters into many moves.
+        pieces.clear();
         for (std::size_t k = 0; k < segs.size(); ++k) {
-            // A bead is held where its centre line is held (METHOD.md's rule,
-            // the one scaffold-check applies): only the unheld stretches of
-            // the centre line make overhang, drawn at the bead's width. The
-            // span is the whole straight piece, not one move: slicers split
-            // bridge lines and overhang perimeters into many moves.
             const bool bridge = gcode::is_bridge(segs[k].role);
             std::size_t last = k;
             while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
-            over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.max_bridge : kShortSpan, over, samples);
+            pieces.push_back({k, last});
             k = last;
+        }
+        for (std::size_t q = 0; q < pieces.size(); ++q) {
+            const auto [k, last] = pieces[q];
+            const bool bridge = gcode::is_bridge(segs[k].role);
+            // Corners: the path goes on from the piece before / into the next.
+            const bool from_prev = q > 0 && joined(segs[k - 1], segs[k]);
+            const bool into_next = q + 1 < pieces.size() && joined(segs[last], segs[last + 1]);
+            if (!from_prev && !into_next && all_samples_held(segs, k, last, held, s.resolution)) continue;
+            const bool first_held =
+                from_prev && held_near_end(segs, pieces[q - 1].first, pieces[q - 1].second, held, s.resolution, true, samples);
+            const bool last_held = into_next && held_near_end(segs, pieces[q + 1].first, pieces[q + 1].second, held,
+                                                              s.resolution, false, samples);
+            over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.marked_bridge_limit : s.max_bridge,
+                                         first_held, last_held, over, samples);
         }
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.
         if (!over_drawn || !over.any(over_box)) continue;
         over.subtract((below_has_skirt ? rim : below).enclosed(over, over_box), over_box);
         if (!over.any(over_box)) continue;
-        for (auto& comp : regions(over, kJoin)) {
-            Region r;
-            r.layer = n;
-            r.z = layer.z;
-            r.i0 = r.i1 = comp.front().i;
-            r.j0 = r.j1 = comp.front().j;
-            for (const Cell& c : comp) {
-                r.i0 = std::min(r.i0, c.i); r.i1 = std::max(r.i1, c.i);
-                r.j0 = std::min(r.j0, c.j); r.j1 = std::max(r.j1, c.j);
-            }
-            r.cells = std::move(comp);
-            found.push_back(std::move(r));
-        }
+        for (auto& comp : regions(over, kJoin)) found.push_back(layers::make_region(std::move(comp), n, layer.z));
     }
 }
 

@@ -7,6 +7,7 @@
 #include "gcode/settings.hpp"
 #include "layers/layer_stack.hpp"
 #include "layers/raster.hpp"
+#include "layers/regions.hpp"
 
 namespace scaffold::overhang {
 
@@ -34,12 +35,8 @@ struct SupportPoints {
 
 Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& settings);
 
-struct Cell {
-    int i, j;
-};
-// 8-connected components of the set cells, each as a list of cells in
-// discovery order (depth first from the row-major first cell; deterministic).
-std::vector<std::vector<Cell>> components(const layers::BitGrid& g);
+using layers::Cell;
+using layers::components;
 
 // The centre-line samples a segment (dx, dy) gets after its first, at most
 // `step` mm apart: ceil(hypot(dx, dy) / step), at least 1. Computed the
