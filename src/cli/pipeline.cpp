@@ -93,6 +93,7 @@ void run(const Request& req, spdlog::logger& log) {
     SettingMap cli = req.slicer_overrides;
     for (const auto& [k, v] : req.overrides) cli[k] = v;
     const Settings settings = build_settings(program, settings_from_environment(), cli);
+    if (!settings.filament_note.empty() && settings.method != Method::None) log.warn("{}", settings.filament_note);
     log.debug("{}: {} lines, {} moves, dialect {}", program.path, program.lines.size(), program.moves.size(),
               gcode::dialect_name(program.dialect));
     if (settings.method == Method::None) {

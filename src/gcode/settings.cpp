@@ -4,7 +4,9 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <initializer_list>
 #include <vector>
 
@@ -72,6 +74,12 @@ private:
     const SettingMap& cli_;
 };
 
+std::string fixed3(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3g", v);
+    return b;
+}
+
 void positive(const gcode::Program& p, const char* name, double v) {
     if (!(v > 0)) throw Error(p.path, 0, std::string("setting '") + name + "' must be positive");
 }
@@ -109,6 +117,61 @@ double observed_retraction(const gcode::Program& p) {
     return r[r.size() / 2];
 }
 
+// Filament cross-section (mm^2) that the file's own model lines imply: E
+// per mm of a bead of known width and layer height, the median over lines
+// of 1 mm or more above the first layer (bridges, whose beads are round,
+// left out). Volumetric E (Cura's UltiGCode, M200) implies 1. 0 if the file
+// has too few such lines.
+double implied_filament_area(const gcode::Program& p, const Settings& s, double width) {
+    const double h = s.layer_height;
+    std::vector<double> area;
+    const std::size_t stride = std::max<std::size_t>(1, p.moves.size() / 50000);
+    for (std::size_t k = 0; k < p.moves.size(); k += stride) {
+        const gcode::Move& m = p.moves[k];
+        if (m.kind != gcode::MoveKind::Extrude || gcode::is_bridge(m.role) || gcode::is_support(m.role)) continue;
+        if (m.z1 <= s.first_layer_height + h / 2 || m.e <= 0) continue;
+        const double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
+        if (len < 1.0) continue;
+        const double w = m.width > 0 ? m.width : width;
+        area.push_back(((w - h) * h + std::numbers::pi * h * h / 4) * len / m.e);
+    }
+    if (area.size() < 20) return 0;
+    std::nth_element(area.begin(), area.begin() + area.size() / 2, area.end());
+    return area[area.size() / 2];
+}
+
+// Support extrusion never rests on a guessed filament diameter: the one
+// stated is kept where the model's own lines agree with it (within the
+// spread of widths and flow the slicers use); otherwise, or where none is
+// stated (Cura hands its scripts no settings), the common diameter nearest
+// to what the lines imply: 1.75, 2.85 or 3.0 mm, or volumetric E.
+void check_filament(const gcode::Program& p, const Lookup& l, Settings& s) {
+    double width = s.nozzle_diameter * 1.125;  // the slicers' usual automatic width
+    double w = 0;
+    bool pct = false;
+    if (l.number({"perimeter_extrusion_width", "extrusion_width", "line_width", "wall_line_width_x", "wall_line_width",
+                  "extruderWidth"}, w, &pct) && w > 0)
+        width = pct ? s.nozzle_diameter * w / 100 : w;
+    const double implied = implied_filament_area(p, s, width);
+    if (implied <= 0) return;
+    const bool stated = l.find({"filament_diameter", "material_diameter", "filamentDiameter", "filamentDiameters"}) != nullptr;
+    const double stated_area = std::numbers::pi * s.filament_diameter * s.filament_diameter / 4;
+    if (stated && implied / stated_area > 0.55 && implied / stated_area < 1.8) return;
+    struct Choice { double diameter; const char* name; };
+    const Choice choices[] = {{2 / std::sqrt(std::numbers::pi), "volumetric E (mm^3)"},
+                              {1.75, "1.75 mm filament"}, {2.85, "2.85 mm filament"}, {3.0, "3.0 mm filament"}};
+    const Choice* best = &choices[0];
+    for (const Choice& c : choices) {
+        auto miss = [&](const Choice& x) { return std::abs(std::log(implied / (std::numbers::pi * x.diameter * x.diameter / 4))); };
+        if (miss(c) < miss(*best)) best = &c;
+    }
+    if (stated || std::abs(best->diameter - s.filament_diameter) > 1e-9)
+        s.filament_note = "the model's own lines extrude " + fixed3(1 / implied) + " mm of E per mm^3 of bead, as " + best->name +
+                          (stated ? " (the file states a " + fixed3(s.filament_diameter) + " mm diameter)" : " (no diameter stated)") +
+                          ": support is extruded to match";
+    s.filament_diameter = best->diameter;
+}
+
 }  // namespace
 
 SettingMap settings_from_environment() {
@@ -128,18 +191,20 @@ SettingMap settings_from_environment() {
 Settings build_settings(const gcode::Program& program, const SettingMap& environment, const SettingMap& overrides) {
     Settings s;
     Lookup l(program, environment, overrides);
-    l.number({"nozzle_diameter", "machine_nozzle_size"}, s.nozzle_diameter);
-    l.number({"filament_diameter", "material_diameter"}, s.filament_diameter);
-    l.number({"layer_height"}, s.layer_height);
+    l.number({"nozzle_diameter", "machine_nozzle_size", "extruderDiameter"}, s.nozzle_diameter);
+    l.number({"filament_diameter", "material_diameter", "filamentDiameter", "filamentDiameters"}, s.filament_diameter);
+    l.number({"layer_height", "layerHeight"}, s.layer_height);
     bool pct = false;
     double first = s.layer_height;
     if (l.number({"first_layer_height", "initial_layer_print_height", "layer_height_0"}, first, &pct))
         s.first_layer_height = pct ? s.layer_height * first / 100 : first;
+    else if (l.number({"firstLayerHeightPercentage"}, first))
+        s.first_layer_height = s.layer_height * first / 100;
     else
         s.first_layer_height = s.layer_height;
     l.flag({"use_relative_e_distances", "relative_extrusion"}, s.relative_e);
     l.flag({"use_firmware_retraction", "machine_firmware_retract"}, s.firmware_retraction);
-    if (!l.number({"retract_length", "retraction_length", "retraction_amount"}, s.retract_length)) {
+    if (!l.number({"retract_length", "retraction_length", "retraction_amount", "extruderRetractionDistance"}, s.retract_length)) {
         double seen = observed_retraction(program);
         if (seen > 0) s.retract_length = seen;
     }
@@ -165,7 +230,7 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
     l.number({"first_layer_temperature", "nozzle_temperature_initial_layer", "material_print_temperature_layer_0"},
              s.first_layer_temperature);
     l.number({"bed_temperature", "hot_plate_temp", "material_bed_temperature"}, s.bed_temperature);
-    l.flag({"spiral_vase", "spiral_mode", "magic_spiralize"}, s.spiral_vase);
+    l.flag({"spiral_vase", "spiral_mode", "magic_spiralize", "spiralVaseMode"}, s.spiral_vase);
     if (!l.flag({"complete_objects"}, s.sequential_printing)) {
         if (const std::string* seq = l.text({"print_sequence"}))
             s.sequential_printing = *seq == "by object" || *seq == "one_at_a_time";
@@ -203,6 +268,7 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
 
     positive(program, "nozzle_diameter", s.nozzle_diameter);
     positive(program, "filament_diameter", s.filament_diameter);
+    check_filament(program, l, s);
     positive(program, "layer_height", s.layer_height);
     positive(program, "first_layer_height", s.first_layer_height);
     positive(program, "resolution", s.resolution);

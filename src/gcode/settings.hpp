@@ -71,6 +71,7 @@ struct Settings {
 
     // --- program ---
     std::string source;               // where the config came from, for the header
+    std::string filament_note;        // set when the file's extrusion overrode the stated diameter
 };
 
 // Raw key/value settings in priority order; later layers override earlier.

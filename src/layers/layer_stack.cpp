@@ -110,10 +110,11 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     if (stack.z_varies) nominal_heights(program, stack);
 
     // Heights and the layer beneath: by z, ignoring anything printed before
-    // the first layer (a purge line at the start rests on the bed). The
-    // first layer is the lowest one, or the first one the slicer marked as a
-    // layer where that is higher: everything at or below its height rests on
-    // the bed (PrusaSlicer's intro line at Z 0.2 under a 0.3 mm first layer).
+    // the first layer: the start code's purge and intro lines rest on the bed
+    // and are no layers of their own (PrusaSlicer's intro line at Z 0.2 under
+    // a 0.3 mm first layer; Bambu's purge at 0.2, then a line at 0.3, then
+    // the first layer at 0.2). The first layer is the first one the slicer
+    // marked as a layer, else the lowest.
     std::size_t lowest = 0;
     for (std::size_t i = 1; i < stack.layers.size(); ++i)
         if (stack.layers[i].z < stack.layers[lowest].z - kZEps) lowest = i;
@@ -121,7 +122,7 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
         const std::uint32_t first_hint = program.layer_hints.front().line;
         for (std::size_t i = 0; i < stack.layers.size(); ++i)
             if (stack.layers[i].last_extrusion_line > first_hint) {
-                if (stack.layers[i].z > stack.layers[lowest].z + kZEps) lowest = i;
+                lowest = i;
                 break;
             }
     }

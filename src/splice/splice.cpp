@@ -42,7 +42,9 @@ class BlockWriter {
 public:
     BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
                 std::string_view restore_type, gcode::Dialect dialect)
-        : saved_(saved), s_(s), layer_(layer), fw_(fw_retraction || saved.fw_retracted),
+        // Retract the way the slicer did at this point: filament pulled back
+        // by E is given back by E, whatever else the file does elsewhere.
+        : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
           restore_type_(restore_type), dialect_(dialect) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
