@@ -204,7 +204,7 @@ Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, 
         // the first extrusion after a retraction also primes.
         double e_max = len * ((max_width - h) * h + std::numbers::pi * h * h / 4) / (std::numbers::pi * fd * fd / 4);
         double primed = std::min(retracted, static_cast<double>(m.e));
-        retracted -= primed;
+        retracted = 0;  // extruding ends a retraction (as in gcode/machine.cpp)
         if (m.e - primed > e_max + prime_allowance) {
             note(m.line, ProblemKind::EJump, "E jump: " + fixed(m.e, 3) + " mm of filament over " + fixed(len, 3) + " mm of motion");
             continue;

@@ -18,9 +18,13 @@ MoveKind classify(double dxy2, double e) {
     return MoveKind::Travel;
 }
 
+// Extruding ends a retraction whatever was given back: Simplify3D primes
+// 0.2 mm less than it retracts (a negative "extra restart distance"), and
+// counting the rest as still retracted would add up over the print.
 void track_retraction(MachineState& st, MoveKind kind, double e) {
     if (kind == MoveKind::Retract || kind == MoveKind::Wipe) st.retracted_mm -= e;
     else if (kind == MoveKind::Unretract) st.retracted_mm = std::max(0.0, st.retracted_mm - e);
+    else if (kind == MoveKind::Extrude) st.retracted_mm = 0;
 }
 
 void push(std::vector<Move>& moves, std::uint32_t line, double x0, double y0, double z0, double x1,

@@ -102,8 +102,22 @@ struct Parser {
         if (starts_with(c, "FEATURE:")) { role = role_from_name(trim(c.substr(8))); return; }
         if (starts_with(c, "WIDTH:")) { width = static_cast<float>(parse_double(c.substr(6), 0)); return; }
         if (starts_with(c, "LINE_WIDTH:")) { width = static_cast<float>(parse_double(c.substr(11), 0)); return; }
-        if (c == "LAYER_CHANGE" || c == "CHANGE_LAYER" || starts_with(c, "LAYER:")) {
+        if (c == "LAYER_CHANGE" || c == "CHANGE_LAYER" || starts_with(c, "LAYER:") || starts_with(c, " LAYER:")) {
             p.layer_hints.push_back({i, -1, -1});
+            return;
+        }
+        // Simplify3D "; layer 2, Z = 0.69", Kiri:Moto ";; --- layer 1 (0.250 @ 0.505) ---",
+        // KISSlicer "; BEGIN_LAYER_OBJECT z=0.526 z_thickness=0.263".
+        if (starts_with(c, "layer ") && c.find(", Z = ") != std::string_view::npos) {
+            p.layer_hints.push_back({i, parse_double(c.substr(c.find(", Z = ") + 6), -1), -1});
+            return;
+        }
+        if (starts_with(c, "; --- layer ") && c.find(" @ ") != std::string_view::npos) {
+            p.layer_hints.push_back({i, parse_double(c.substr(c.find(" @ ") + 3), -1), -1});
+            return;
+        }
+        if (starts_with(c, "BEGIN_LAYER_OBJECT z=")) {
+            p.layer_hints.push_back({i, parse_double(c.substr(21), -1), -1});
             return;
         }
         if ((starts_with(c, "Z:") || starts_with(c, "Z_HEIGHT:")) && !p.layer_hints.empty())
