@@ -186,6 +186,9 @@ void run(const Request& req, spdlog::logger& log) {
              points.points.size(), scaffold.bridges.size(), pillars,
              scaffold.dropped_points.empty() ? "" : fmt::format(", {} points dropped", scaffold.dropped_points.size()),
              spliced.filament_mm, grams, model_mm > 0 ? 100 * spliced.filament_mm / model_mm : 0.0, time_change);
+    if (spliced.blocks_split)
+        log.warn("{} support blocks went inside an object's label block open across a layer change: cancelling that "
+                 "object in the printer would drop them", spliced.blocks_split);
     for (const plan::Xyz& e : scaffold.unheld_bridge_ends)
         log.warn("a bridge end at ({:.2f}, {:.2f}, z {:.2f}) has no pillar under it: check that bridge", e.x, e.y, e.z);
     for (const auto& [name, s] : time.stages) log.debug("stage {}: {:.1f} ms", name, s * 1000);

@@ -1,5 +1,6 @@
 #include "splice/splice.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -190,6 +191,46 @@ private:
     std::string out_;
 };
 
+// Blocks that support must never be spliced into: an object's labelled
+// block (cancelling the object in the printer drops it, and with it the
+// support another object stands on) and a tool change with its purge.
+// +1 opens a block, -1 closes it, 0 neither.
+int block_marker(std::string_view t) {
+    auto starts = [&](std::string_view p) { return t.substr(0, p.size()) == p; };
+    while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+    if (starts("EXCLUDE_OBJECT_START")) return 1;
+    if (starts("EXCLUDE_OBJECT_END")) return -1;
+    if (starts("M486 S")) return t.substr(6, 2) == "-1" ? -1 : 1;
+    if (starts("M620 S")) return 1;
+    if (starts("M621 S")) return -1;
+    if (starts("; start printing object") || starts(";start printing object")) return 1;
+    if (starts("; stop printing object") || starts(";stop printing object")) return -1;
+    return 0;
+}
+
+// Where to insert a block meant for line `at`: before the labelled block
+// open there. `open` is the line that opened the block open at `from` (the
+// lines before `from` are behind us), or -1; it is carried to the returned
+// line. A block that opened before `from` spans the layer change: the
+// slicers seen never write one, and moving support past it would print it
+// after the next layer, so it is split there (counted in `spanned`).
+std::uint32_t outside_blocks(const gcode::Program& p, std::uint32_t from, std::uint32_t at, std::int64_t& open,
+                             std::size_t& spanned) {
+    for (std::uint32_t l = from; l < at && l < p.lines.size(); ++l) {
+        int m = block_marker(p.line_text(l));
+        if (m > 0 && open < 0) open = l;
+        else if (m < 0) open = -1;
+    }
+    if (open < 0) return at;
+    if (open >= static_cast<std::int64_t>(from)) {
+        std::uint32_t before = static_cast<std::uint32_t>(open);
+        open = -1;
+        return before;
+    }
+    ++spanned;
+    return at;
+}
+
 }  // namespace
 
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
@@ -203,9 +244,10 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     std::uint32_t line = 0;
     std::uint64_t released = 0;  // text before this was lexed and released
     bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
+    std::int64_t open = -1;  // line that opened the labelled block open at `line`
     for (const toolpath::LayerPaths& lp : paths.layers) {
         const layers::Layer& layer = stack.layers[lp.layer];
-        std::uint32_t at = layer.end_line;
+        std::uint32_t at = std::max(line, outside_blocks(program, line, layer.end_line, open, result.blocks_split));
         for (; line < at && line < program.lines.size(); ++line) {
             std::string_view text = program.line_text(line);
             gcode::lex(text, cmd);

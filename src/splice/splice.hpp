@@ -19,6 +19,9 @@ struct SpliceResult {
     double filament_mm = 0;          // support filament, mm of filament
     double extruded_length_mm = 0;   // support bead length
     int layers_touched = 0;
+    // Insertions that fell inside an object's labelled block or a tool
+    // change open across the layer change (support spliced into it).
+    std::size_t blocks_split = 0;
 };
 
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,

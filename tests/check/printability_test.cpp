@@ -280,3 +280,78 @@ TEST(Check, TrapezoidTimeOfOneMove) {
     double leg = (100 - 0) / 1000.0 + (100 - vj) / 1000.0 + (50 - (1e4 / 2000) - (1e4 - vj * vj) / 2000) / 100;
     EXPECT_NEAR(check::estimate_print_time(c), 2 * leg, 1e-6);
 }
+
+// METHOD's rule (b): an unmarked straight bead spans a gap between held
+// ends up to --max-bridge (10 mm); a marked bridge up to 30 mm.
+TEST(Check, UnmarkedSpanHeldUpToMaxBridge) {
+    auto short_plain = run(towers_and_deck(8, "Solid infill"));
+    EXPECT_TRUE(short_plain.ok()) << check::report_text(short_plain);
+    auto long_plain = run(towers_and_deck(15, "Solid infill"));
+    EXPECT_FALSE(long_plain.ok());
+    EXPECT_GT(long_plain.unheld_model_mm2, 20);
+    auto long_marked = run(towers_and_deck(15, "Bridge infill"));
+    EXPECT_TRUE(long_marked.ok()) << check::report_text(long_marked);
+    check::CheckOptions tight;
+    tight.max_bridge = 5;
+    auto out = gcode::parse(towers_and_deck(8, "Solid infill").str(), "out.gcode");
+    EXPECT_FALSE(check::check(out, nullptr, tight).ok());
+}
+
+// The top of a round hole (a benchy's hawse hole): a short straight piece
+// between two corner moves that turn off it. The corners are held within a
+// dangling end, so the piece is held at both ends and spans the hole.
+TEST(Check, StraightPieceBetweenHeldCornersSpans) {
+    SynthGcode g;
+    for (int l = 1; l <= 21; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        if (l <= 20) {
+            g.filled_rect(100, 100, 105, 110);
+            g.filled_rect(109, 100, 114, 110);
+        } else {
+            // Corner pieces 0.3 mm long leave the towers' edges at a slant.
+            g.travel(104.6, 105);
+            g.extrude(104.9, 105.3);
+            g.extrude(108.7, 105.3);  // straight over the 4 mm hole
+            g.extrude(109.0, 105);
+        }
+    }
+    auto r = run(g);
+    EXPECT_TRUE(r.ok()) << check::report_text(r);
+}
+
+// The slicer's purge before the first layer is its own business: a large E
+// without motion there is reported, not failed; the same in the print fails.
+TEST(Check, StartCodePurgeIsNoFailure) {
+    SynthGcode g;
+    g.raw("G1 Z0.3 F600");
+    g.raw("G1 E20 F300 ; prime blob");
+    g.raw("G92 E0");
+    for (int l = 1; l <= 5; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.filled_rect(100, 100, 110, 110);
+    }
+    auto r = run(g);
+    EXPECT_TRUE(r.ok()) << check::report_text(r);
+    EXPECT_EQ(r.start_code_problems, 1);
+    EXPECT_EQ(r.e_jumps, 0);
+    SynthGcode mid = g;
+    mid.raw("G1 E500 F300");  // far past what the layers extruded
+    auto bad = run(mid);
+    EXPECT_FALSE(bad.ok());
+    EXPECT_EQ(bad.e_jumps, 1);
+}
+
+// With --original, what the original did itself on lines the edit left
+// alone is reported apart; only what the edit added or broke fails.
+TEST(Check, OriginalsOwnProblemsAreNoFailure) {
+    SynthGcode g = cube(6);
+    g.raw("G1 E500 F300");  // a flush after the print, far past what the layers extruded
+    const std::string original = g.str();
+    auto alone = run(g);
+    EXPECT_FALSE(alone.ok());
+    auto compared = run(g, &original);
+    EXPECT_TRUE(compared.ok()) << check::report_text(compared);
+    EXPECT_EQ(compared.original_problems, 1);
+}

@@ -20,9 +20,9 @@ struct Found {
     overhang::SupportPoints points;
 };
 
-Found detect(const SynthGcode& g) {
+Found detect(const SynthGcode& g, const SettingMap& options = {}) {
     auto p = gcode::parse(g.str(), "synth");
-    Settings s = build_settings(p, {}, {});
+    Settings s = build_settings(p, {}, options);
     Found f;
     f.stack = layers::build_layers(p, s);
     f.overhangs = overhang::find_overhangs(f.stack, s);
@@ -96,16 +96,16 @@ void wavy_line(SynthGcode& g, double xa, double xb, double y) {
     g.extrude(xb, y);
 }
 
-SynthGcode deck(const char* role) {
-    SynthGcode g;  // two towers 8 mm apart, then a deck across both
+SynthGcode deck(const char* role, double gap = 8) {
+    SynthGcode g;  // two towers `gap` mm apart, then a deck across both
     for (int l = 1; l <= 25; ++l) {
         g.layer(0.2 * l);
         if (l <= 20) {
             g.filled_rect(100, 100, 105, 110);
-            g.filled_rect(113, 100, 118, 110);
+            g.filled_rect(105 + gap, 100, 110 + gap, 110);
         } else {
             g.type(l == 21 ? role : "Solid infill");
-            g.filled_rect(100, 100, 118, 110);
+            g.filled_rect(100, 100, 110 + gap, 110);
         }
     }
     return g;
@@ -163,15 +163,22 @@ TEST(OverhangDetect, ChamferAt45DegreesNeedsNothingAt72DegreesItDoes) {
     expect_covered(c, 3.5);
 }
 
+// METHOD's rule (b): any straight bead spans up to --max-bridge (10 mm)
+// between held ends, a slicer-marked bridge up to 30 mm.
 TEST(OverhangDetect, MarkedBridgeHeldUnmarkedSpanIsNot) {
-    Found marked = detect(deck("Bridge infill"));
+    Found marked = detect(deck("Bridge infill", 15));
     EXPECT_TRUE(marked.points.points.empty()) << marked.points.points.size();
-    Found plain = detect(deck("Solid infill"));
+    Found short_plain = detect(deck("Solid infill", 8));
+    EXPECT_TRUE(short_plain.points.points.empty()) << short_plain.points.points.size();
+    Found plain = detect(deck("Solid infill", 15));
     EXPECT_GE(plain.points.points.size(), 2u);
     for (const auto& p : plain.points.points) {
         EXPECT_GT(p.x, 105);
-        EXPECT_LT(p.x, 113);
+        EXPECT_LT(p.x, 120);
     }
+    // --max-bridge 5: the 8 mm unmarked span is too long.
+    Found tight_plain = detect(deck("Solid infill", 8), {{"--max-bridge", "5"}});
+    EXPECT_GE(tight_plain.points.points.size(), 2u);
 }
 
 TEST(OverhangDetect, MushroomCapGetsPointsAllRoundTheStem) {
@@ -252,21 +259,21 @@ TEST(OverhangDetect, ChamferSweepAgreesWithTheValidator) {
 }
 
 TEST(OverhangDetect, MarkedBridgeSplitIntoShortMovesIsHeld) {
-    Found split = detect(towers_and_deck(8, "Bridge infill", line_in_moves));
+    Found split = detect(towers_and_deck(15, "Bridge infill", line_in_moves));
     EXPECT_TRUE(split.points.points.empty()) << split.points.points.size() << " points";
-    // The same lines unmarked are an overhang over the gap.
-    Found plain = detect(towers_and_deck(8, "Solid infill", line_in_moves));
+    // The same lines unmarked are an overhang over the gap (over 10 mm).
+    Found plain = detect(towers_and_deck(15, "Solid infill", line_in_moves));
     EXPECT_GE(plain.points.points.size(), 2u);
     for (const auto& p : plain.points.points) {
         EXPECT_GT(p.x, 105);
-        EXPECT_LT(p.x, 113);
+        EXPECT_LT(p.x, 120);
     }
     expect_covered(plain, 3.5);
 }
 
 TEST(OverhangDetect, MarkedBridgeTooLongOrNotStraightGetsPoints) {
-    // 15 mm between the towers: over the 10 mm bridge limit.
-    Found longer = detect(towers_and_deck(15, "Bridge infill", line_in_moves));
+    // 32 mm between the towers: over the 30 mm limit of a marked bridge.
+    Found longer = detect(towers_and_deck(32, "Bridge infill", line_in_moves));
     EXPECT_GE(longer.points.points.size(), 2u);
     expect_covered(longer, 3.5);
     // Within the limit but turning at every move: no straight span to hold it.
