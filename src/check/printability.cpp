@@ -482,13 +482,13 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         for (int k = L - 1; k >= 0; --k) {
             double dz = layer.z - stack.layers[k].z;
             if (dz <= kZEps) continue;
-            if (dz > 3 * h_nom + kZEps) {
+            if (dz > 3 * h_nom + kZEps && dz > layer.nominal_height + kZEps) {
                 if (stack.layers[k].z < layer.z - 3 * h_nom - 1.0) break;
                 continue;
             }
             const LayerGrids& g = grids(k);
             below |= g.support;
-            if (dz <= h_nom + kZEps || k == layer.below) {
+            if (dz <= std::max(h_nom, layer.nominal_height) + kZEps || k == layer.below) {
                 below |= g.model;
                 skirt_below |= g.skirt;
                 tips |= g.support;

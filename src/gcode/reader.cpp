@@ -117,7 +117,8 @@ struct Parser {
             return;
         }
         if (starts_with(c, "BEGIN_LAYER_OBJECT z=")) {
-            p.layer_hints.push_back({i, parse_double(c.substr(21), -1), -1});
+            std::size_t th = c.find("z_thickness=");
+            p.layer_hints.push_back({i, parse_double(c.substr(21), -1), th == std::string_view::npos ? -1 : parse_double(c.substr(th + 12), -1)});
             return;
         }
         if ((starts_with(c, "Z:") || starts_with(c, "Z_HEIGHT:")) && !p.layer_hints.empty())

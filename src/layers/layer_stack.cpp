@@ -40,6 +40,21 @@ void nominal_heights(const gcode::Program& program, LayerStack& stack) {
     }
 }
 
+// The height the slicer states for each layer (;HEIGHT:, ;LAYER_HEIGHT:,
+// KISSlicer's z_thickness=), from the last hint at or before the layer's
+// last extrusion.
+void stated_heights(const gcode::Program& program, LayerStack& stack) {
+    std::size_t hint = 0;
+    double h = 0;
+    for (Layer& L : stack.layers) {
+        while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= L.last_extrusion_line) {
+            h = program.layer_hints[hint].height;
+            ++hint;
+        }
+        L.nominal_height = h > 0 ? h : 0;
+    }
+}
+
 }  // namespace
 
 ZMotion z_motion(const gcode::Program& program) {
@@ -108,6 +123,7 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     if (!any) throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
     stack.layers.back().end_line = static_cast<std::uint32_t>(program.lines.size());
     if (stack.z_varies) nominal_heights(program, stack);
+    stated_heights(program, stack);
 
     // Heights and the layer beneath: by z, ignoring anything printed before
     // the first layer: the start code's purge and intro lines rest on the bed
@@ -134,7 +150,9 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     b.max_x = b.max_y = -1e300;
     for (std::size_t i = 0; i < stack.layers.size(); ++i) {
         Layer& L = stack.layers[i];
-        L.on_bed = i <= lowest || L.z <= min_z + kZEps;
+        // A layer whose stated height reaches down to the bed is a first
+        // layer too (an object sliced on a Z grid of its own, KISSlicer).
+        L.on_bed = i <= lowest || L.z <= min_z + kZEps || (L.nominal_height > 0 && L.z - L.nominal_height < 0.01);
         L.purge = i < lowest;
         L.below = -1;
         if (!L.on_bed) {
@@ -144,6 +162,16 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
         }
         L.height = L.below >= 0 ? L.z - stack.layers[L.below].z : L.z;
         if (L.height <= kZEps) L.height = settings.layer_height;
+        if (L.below >= 0) {
+            const double window = std::max(settings.layer_height, L.nominal_height) + kZEps;
+            // Back through the file until well below the window (layers come
+            // in rising z but for interleaved objects).
+            for (std::size_t j = i; j-- > lowest;) {
+                const double dz = L.z - stack.layers[j].z;
+                if (dz > window + 1.0) break;
+                if (static_cast<int>(j) == L.below || (dz > kZEps && dz <= window)) L.beneath.push_back(static_cast<int>(j));
+            }
+        }
         for (Segment& s : L.segments) {
             if (s.width > 0) continue;
             const gcode::Move& m = moves[s.move];

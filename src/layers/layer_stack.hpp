@@ -30,7 +30,13 @@ struct Layer {
     std::uint32_t last_extrusion_line = 0;
     bool on_bed = false;       // rests on the bed (first layer, or a purge line)
     int below = -1;            // index of the layer beneath (nearest lower z), -1 = bed
+    // Every layer whose material is "the layer beneath" (METHOD.md): within
+    // one nominal layer height below (the slicer's for this layer where it
+    // states one, else the print's), `below` always among them. Objects
+    // sliced on Z grids of their own (KISSlicer) interleave their layers.
+    std::vector<int> beneath;
     bool purge = false;        // printed before the first layer (a purge line): no support here
+    double nominal_height = 0; // the slicer's stated height for this layer, 0 if none
     std::vector<Segment> segments;
 };
 

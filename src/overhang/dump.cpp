@@ -41,7 +41,7 @@ void write_layer_svgs(const std::string& dir, const Overhangs& overhangs, const 
         layers::BitGrid below(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
                               g.origin_y() + g.height() * g.cell(), g.cell());
         layers::BitGrid here = below;
-        if (layer.below >= 0) layers::draw_layer(below, stack.layers[layer.below]);
+        for (int k : layer.beneath) layers::draw_layer(below, stack.layers[k]);
         layers::draw_layer(here, layer);
         std::string o = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + std::to_string(g.width()) + " " +
                         std::to_string(g.height()) + "\" width=\"" + std::to_string(g.width() * 4) + "\" height=\"" +

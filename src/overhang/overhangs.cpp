@@ -263,25 +263,32 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     // What each scratch grid may hold: work stays inside the layers' boxes.
     layers::CellBox below_box, held_box, over_box;
     bool below_has_skirt = false, over_drawn = false;
-    int below_index = -1, over_index = -1;  // over_box is layer_box of layer over_index
+    std::vector<int> below_layers;  // the layers drawn into `below`
+    int over_index = -1;            // over_box is layer_box of layer over_index
     std::vector<Sample> samples;
     std::vector<std::pair<std::size_t, std::size_t>> pieces;  // first, last segment of each straight piece
     for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
-        if (layer.below != below_index) {
-            const layers::Layer& under = stack.layers[layer.below];
+        if (layer.beneath != below_layers) {
             below.clear(below_box);
             if (below_has_skirt) rim.clear(below_box);
-            below_box = layer.below == over_index ? over_box : layers::layer_box(below, under);
-            layers::draw_layer(below, under);
-            below_has_skirt = std::any_of(under.segments.begin(), under.segments.end(),
-                                          [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
-            if (below_has_skirt) {
-                for (const layers::Segment& sg : under.segments)
-                    if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            below_has_skirt = false;
+            below_box = {};
+            for (int k : layer.beneath) {
+                const layers::Layer& under = stack.layers[k];
+                const layers::CellBox b = k == over_index ? over_box : layers::layer_box(below, under);
+                below_box = below_box.empty() ? b : b.empty() ? below_box : layers::CellBox{std::min(below_box.i0, b.i0), std::min(below_box.j0, b.j0), std::max(below_box.i1, b.i1), std::max(below_box.j1, b.j1)};
+                layers::draw_layer(below, under);
+                below_has_skirt |= std::any_of(under.segments.begin(), under.segments.end(),
+                                               [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
             }
-            below_index = layer.below;
+            if (below_has_skirt) {
+                for (int k : layer.beneath)
+                    for (const layers::Segment& sg : stack.layers[k].segments)
+                        if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            }
+            below_layers = layer.beneath;
         }
         // Half a cell inside the validator's reach (which adds half a cell), so
         // raster alignment never decides a borderline bead.
@@ -348,7 +355,8 @@ std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings
     std::vector<std::size_t> work(n_layers + 1, 0);
     for (int n = 0; n < n_layers; ++n) {
         const layers::Layer& layer = stack.layers[n];
-        std::size_t w = layer.segments.size() + (layer.below >= 0 ? stack.layers[layer.below].segments.size() : 0);
+        std::size_t w = layer.segments.size();
+        for (int k : layer.beneath) w += stack.layers[k].segments.size();
         work[n + 1] = work[n] + w;
     }
     const std::size_t threads = std::min({std::max<std::size_t>(1, std::thread::hardware_concurrency()), kMaxThreads,

@@ -17,6 +17,7 @@ layers::Layer make_layer(double z, double height, int below, bool on_bed = false
     l.z = z;
     l.height = height;
     l.below = below;
+    if (below >= 0) l.beneath = {below};  // the layer named, as the stack builds it for one Z grid
     l.on_bed = on_bed;
     return l;
 }
