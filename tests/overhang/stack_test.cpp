@@ -89,8 +89,14 @@ TEST(OverhangStack, JudgedAgainstTheLayerNamedBelow) {
     EXPECT_EQ(over_l1.layers[0].layer, 2);
     EXPECT_NEAR(over_l1.area_mm2, 100, 10);  // the 10 x 10 mm half beyond layer 1
     l2.below = 0;
+    l2.beneath = {0};
     auto over_l0 = overhang::find_overhangs(stack_of({l0, l1, l2}), s);
     EXPECT_TRUE(over_l0.layers.empty());
+    // Both layers beneath (objects on Z grids of their own): their union holds it.
+    l2.below = 1;
+    l2.beneath = {1, 0};
+    auto over_both = overhang::find_overhangs(stack_of({l0, l1, l2}), s);
+    EXPECT_TRUE(over_both.layers.empty());
 }
 
 TEST(OverhangStack, SkinOverSparseInfillIsHeldOverAnOpenBoxIsNot) {
