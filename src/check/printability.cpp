@@ -608,7 +608,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 any_left = true;
                 const auto& sm = piece[k];
                 const auto& sg = segs[sm.seg];
-                const auto& prev = k > 0 ? piece[k - 1] : sm;
+                // Through the unheld samples only, as the detector draws them
+                // (so a region it finds under the speck size is never larger here).
+                const auto& prev = k > 0 && !piece[k - 1].held ? piece[k - 1] : sm;
                 (is_support_move(out.moves[sg.move]) ? unheld_support : unheld_model)
                     .draw_segment(prev.x, prev.y, sm.x, sm.y, sg.width);
             }
