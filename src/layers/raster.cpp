@@ -592,7 +592,11 @@ BitGrid make_grid(const LayerStack& stack, double cell, double margin) {
         throw Error("the print spans " + std::to_string(static_cast<long>(b.max_x - b.min_x)) + " x " +
                     std::to_string(static_cast<long>(b.max_y - b.min_y)) +
                     " mm: too large to rasterize at this --resolution; check for stray coordinates");
-    return BitGrid(b.min_x - margin, b.min_y - margin, b.max_x + margin, b.max_y + margin, cell);
+    // On the lattice of multiples of the cell from the origin: the detector
+    // and the validator, whose prints' bounds differ by the support, then
+    // share cell boundaries and judge a borderline bead alike.
+    const double x0 = std::floor((b.min_x - margin) / cell) * cell, y0 = std::floor((b.min_y - margin) / cell) * cell;
+    return BitGrid(x0, y0, b.max_x + margin, b.max_y + margin, cell);
 }
 
 std::string svg_cell_runs(const BitGrid& g, const char* fill) {

@@ -290,10 +290,11 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             }
             below_layers = layer.beneath;
         }
-        // Half a cell inside the validator's reach (which adds half a cell), so
-        // raster alignment never decides a borderline bead.
+        // The validator's reach, on the same cell lattice (make_grid): a bead
+        // the validator holds is no overhang here, so no support goes under
+        // raster noise (a 0.1 mm sliver along every layer's edge).
         held.clear(held_box);
-        held_box = below.dilate_into(held, std::max(0.0, layer.height * slope - s.resolution / 2), below_box);
+        held_box = below.dilate_into(held, layer.height * slope + s.resolution / 2, below_box);
         if (over_drawn) over.clear(over_box);
         over_box = layers::layer_box(over, layer);
         over_index = n;
