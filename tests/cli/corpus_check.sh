@@ -23,7 +23,7 @@ for gz in "$src"/tests/data/corpus/*.gcode.gz; do
     # (once per model and slicer: the retraction variants plan the same)
     case "$name" in *-fwretract|*-relE|*-zhop) n=$((n+1)); continue ;; esac
     "$build/scaffold" -q --method "$m" --min-overhang-area 0 "$tmp/in.gcode" -o "$tmp/out.gcode"
-    if ! "$build/scaffold-check" --tolerance-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
+    if ! "$build/scaffold-check" --tolerance-mm2 0 --min-region-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
       echo "FAIL $name --method $m --min-overhang-area 0 (no unheld area allowed):"; cat "$tmp/report.txt"; fail=1
     fi
     n=$((n+1))

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "gcode/lexer.hpp"
+#include "gcode/machine.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
 #include "layers/layer_stack.hpp"
@@ -120,4 +122,73 @@ TEST(Splice, FilamentForCrossSection) {
     // 0.45 x 0.2 bead, 10 mm: area (0.25*0.2 + pi*0.01) mm^2 over the filament's 2.405 mm^2.
     double expect = 10 * (0.25 * 0.2 + M_PI * 0.04 / 4) / (M_PI * 1.75 * 1.75 / 4);
     EXPECT_NEAR(splice::filament_for(10, 0.45, 0.2, 1.75), expect, 1e-12);
+}
+
+// Support never goes inside an object's label block: cancelling the object
+// in the printer (Klipper EXCLUDE_OBJECT, M486, Orca's start/stop comments)
+// would drop it. Creality Print closes the block only after the next
+// layer's change: the block is inserted before the block's start instead.
+TEST(Splice, NeverInsideAnObjectsLabelBlock) {
+    for (const char* kind : {"klipper", "m486", "orca"}) {
+        SCOPED_TRACE(kind);
+        const std::string k = kind;
+        const std::string open = k == "klipper" ? "EXCLUDE_OBJECT_START NAME=part" : k == "m486" ? "M486 S0" : "; start printing object, unique label id: 1";
+        const std::string close = k == "klipper" ? "EXCLUDE_OBJECT_END NAME=part" : k == "m486" ? "M486 S-1" : "; stop printing object, unique label id: 1";
+        scaffold::testing::SynthGcode g;
+        g.raw(open);
+        for (int l = 1; l <= 6; ++l) {
+            g.layer(0.2 * l);  // the layer change inside the open block
+            if (l > 1) {
+                g.raw(close);
+                g.raw(open);
+            }
+            g.filled_rect(100, 100, 110, 110);
+        }
+        g.raw(close);
+        gcode::Program in = gcode::parse(g.str(), "in");
+        Settings s = build_settings(in, {}, {});
+        layers::LayerStack stack = layers::build_layers(in, s);
+        plan::Scaffold sc;
+        plan::Column c;
+        c.x0 = c.x1 = 130;
+        c.y0 = c.y1 = 105;
+        c.z0 = 0;
+        c.z1 = 1.0;
+        sc.columns.push_back(c);
+        auto paths = toolpath::make_paths(sc, stack, s);
+        auto res = splice::splice(in, stack, paths, s);
+        EXPECT_EQ(res.blocks_split, 0u);
+        gcode::Program out = gcode::parse(render(in, res.edits), "out");
+        int depth = 0, blocks = 0;
+        for (std::size_t i = 0; i < out.lines.size(); ++i) {
+            std::string_view t = out.line_text(i);
+            if (t == open) ++depth;
+            if (t == close) --depth;
+            if (t.rfind("; scaffold: support for", 0) == 0) {
+                ++blocks;
+                EXPECT_EQ(depth, 0) << "support block inside an object block at output line " << i + 1;
+            }
+        }
+        EXPECT_EQ(blocks, 5);
+        EXPECT_EQ(depth, 0);
+    }
+}
+
+// Extruding ends a retraction: Simplify3D primes 0.2 mm less than it
+// retracts, and the rest must not add up into the next block's prime.
+TEST(Splice, ExtrudingEndsARetraction) {
+    gcode::MachineState st;
+    gcode::Command cmd;
+    std::vector<gcode::Move> moves;
+    for (const char* l : {"M82", "G92 E0", "G1 E-6.5 F3600", "G1 X10 Y0 F9000", "G1 E-0.2 F3600", "G92 E0",
+                          "G1 X20 Y0 E0.5 F4000"}) {
+        ASSERT_STREQ(gcode::lex(l, cmd), "");
+        ASSERT_EQ(gcode::step(st, cmd, 0, moves), nullptr);
+    }
+    EXPECT_FALSE(st.retracted());
+    for (const char* l : {"G92 E0", "G1 E-6.5 F3600"}) {
+        gcode::lex(l, cmd);
+        gcode::step(st, cmd, 0, moves);
+    }
+    EXPECT_NEAR(st.retracted_mm, 6.5, 1e-9);
 }

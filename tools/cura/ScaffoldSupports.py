@@ -2,11 +2,63 @@
 # Copy this file into Cura's "scripts" folder (Help > Show Configuration
 # Folder, then scripts/), restart Cura, and add "Scaffold supports" under
 # Extensions > Post Processing > Modify G-Code. Slice with supports off.
+#
+# Cura hands its scripts the G-code without the ;SETTING_3 block (it adds
+# that only when saving, and then only the settings the user changed), so
+# the settings scaffold needs are read from Cura's own stacks here and passed
+# on the command line: support extrusion then matches the printer's filament
+# (2.85 mm on Ultimaker and LulzBot machines), nozzle and retraction.
 import os
 import subprocess
 import tempfile
 
-from ..Script import Script
+try:
+    from ..Script import Script
+except (ImportError, ValueError):  # outside Cura (tests): a stand-in base
+    class Script:
+        def getSettingValueByKey(self, key):
+            return self._values[key]
+
+# Cura setting keys scaffold reads (gcode/settings.cpp knows them by these
+# names); values come from the first extruder's stack, else the global one.
+CURA_KEYS = (
+    "material_diameter", "machine_nozzle_size", "layer_height", "layer_height_0",
+    "retraction_amount", "retraction_speed", "retraction_prime_speed",
+    "retraction_hop_enabled", "retraction_hop", "retraction_min_travel",
+    "machine_firmware_retract", "speed_travel", "speed_support", "speed_layer_0",
+    "bridge_skin_speed", "machine_width", "machine_depth", "magic_spiralize",
+    "print_sequence", "machine_gcode_flavor",
+)
+
+
+def cura_settings():
+    """The CURA_KEYS values of the running Cura, as strings; {} outside Cura."""
+    try:
+        from cura.CuraApplication import CuraApplication
+    except ImportError:
+        return {}
+    stack = CuraApplication.getInstance().getGlobalContainerStack()
+    if stack is None:
+        return {}
+    extruders = stack.extruderList if hasattr(stack, "extruderList") else []
+    values = {}
+    for key in CURA_KEYS:
+        for s in (extruders[0] if extruders else None, stack):
+            if s is None:
+                continue
+            v = s.getProperty(key, "value")
+            if v is not None:
+                values[key] = str(v)
+                break
+    return values
+
+
+def command_line(binary, method, extra, settings, path):
+    """scaffold's arguments: the method, Cura's settings as --set, the user's extras, the file."""
+    args = [binary, "--method", method]
+    for key in sorted(settings):
+        args += ["--set", key + "=" + settings[key]]
+    return args + list(extra) + [path]
 
 
 class ScaffoldSupports(Script):
@@ -47,7 +99,7 @@ class ScaffoldSupports(Script):
         try:
             with os.fdopen(fd, "w", newline="") as f:
                 f.write("".join(data))
-            result = subprocess.run([binary, "--method", method, *extra, path],
+            result = subprocess.run(command_line(binary, method, extra, cura_settings(), path),
                                     capture_output=True, text=True)
             if result.returncode != 0:
                 raise RuntimeError("scaffold failed: " + result.stderr.strip())

@@ -1,0 +1,241 @@
+// Small synthetic reproductions of what real slicers' files do (the files
+// themselves are in ../shared/corpus/wild, tested by cli.wild when present):
+// each test builds the feature by hand so the suite keeps its meaning
+// without them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "gcode/reader.hpp"
+#include "gcode/settings.hpp"
+#include "layers/layer_stack.hpp"
+#include "overhang/overhangs.hpp"
+#include "support/synth.hpp"
+
+using namespace scaffold;
+using scaffold::testing::SynthGcode;
+
+namespace {
+
+struct Parsed {
+    gcode::Program program;
+    Settings settings;
+    layers::LayerStack stack;
+};
+
+Parsed parse(const std::string& text, const SettingMap& options = {}) {
+    Parsed p{gcode::parse(text, "t.gcode"), {}, {}};
+    p.settings = build_settings(p.program, {}, options);
+    p.stack = layers::build_layers(p.program, p.settings);
+    return p;
+}
+
+// Everything but the config block's "; key = value" lines, as a slicer
+// hands a file without its settings.
+std::string without_config(const std::string& text) {
+    std::string out;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t nl = text.find('\n', pos);
+        std::string line = text.substr(pos, nl - pos);
+        if (!(line.rfind("; ", 0) == 0 && line.find(" = ") != std::string::npos)) out += line + "\n";
+        pos = nl == std::string::npos ? text.size() : nl + 1;
+    }
+    return out;
+}
+
+// Absolute E, one extrusion per line, `e_per_mm` filament per mm.
+std::string square_layers(int layers, double h, double e_per_mm, const std::string& hint) {
+    std::string s = "M82\nG92 E0\n";
+    double e = 0;
+    for (int l = 1; l <= layers; ++l) {
+        s += hint + "\nG1 Z" + std::to_string(h * l) + " F600\nG1 X10 Y10 F6000\n";
+        const double pts[4][2] = {{30, 10}, {30, 30}, {10, 30}, {10, 10}};
+        for (const auto& p : pts) {
+            e += 20 * e_per_mm;
+            s += "G1 X" + std::to_string(p[0]) + " Y" + std::to_string(p[1]) + " E" + std::to_string(e) + "\n";
+        }
+    }
+    return s;
+}
+
+}  // namespace
+
+// Bambu Studio / OrcaSlicer: firmware syntax in M1002, AMS commands, their
+// feature and layer comments.
+TEST(Dialects, BambuHeaderAndComments) {
+    std::string text =
+        "; HEADER_BLOCK_START\n; BambuStudio 01.07.06.92\n; HEADER_BLOCK_END\n"
+        "M1002 gcode_claim_action : 2\nM1002 set_gcode_claim_speed_level : 5\nM624 AQAAAAAAAAA=\nM625\n"
+        "M83\n; CHANGE_LAYER\n; Z_HEIGHT: 0.2\n; LAYER_HEIGHT: 0.2\n; FEATURE: Outer wall\n"
+        "G1 Z0.2 F600\nG1 X10 Y10\nG1 X30 Y10 E1\nG1 X30 Y30 E1\n"
+        "; CHANGE_LAYER\n; Z_HEIGHT: 0.4\n; LAYER_HEIGHT: 0.2\n; FEATURE: Bridge\n"
+        "G1 Z0.4\nG1 X10 Y10 E1\n";
+    Parsed p = parse(text);
+    ASSERT_EQ(p.program.layer_hints.size(), 2u);
+    EXPECT_NEAR(p.program.layer_hints[1].z, 0.4, 1e-9);
+    ASSERT_EQ(p.stack.layers.size(), 2u);
+    EXPECT_EQ(p.stack.layers[0].segments.front().role, gcode::Role::ExternalPerimeter);
+    EXPECT_EQ(p.stack.layers[1].segments.front().role, gcode::Role::BridgeInfill);
+}
+
+// PrusaSlicer's Prusa profiles: the intro line at Z 0.2 under a 0.3 mm
+// first layer is start code, resting on the bed, no layer to support on.
+TEST(Dialects, IntroLineBelowTheFirstLayerRestsOnTheBed) {
+    SynthGcode g(0.3);
+    g.raw("G1 Z0.2 F720");
+    g.raw("G1 X60 Y-3 F1000");
+    g.raw("G1 X100 Y-3 E12 F1000 ; intro line");
+    g.raw("G92 E0");
+    for (int l = 1; l <= 4; ++l) {
+        g.layer(0.3 * l);
+        g.filled_rect(100, 100, 110, 110);
+    }
+    Parsed p = parse(g.str());
+    ASSERT_EQ(p.stack.layers.size(), 5u);
+    EXPECT_TRUE(p.stack.layers[0].purge);
+    EXPECT_TRUE(p.stack.layers[1].on_bed);
+    EXPECT_FALSE(p.stack.layers[1].purge);
+    EXPECT_TRUE(overhang::find_overhangs(p.stack, p.settings).layers.empty());
+}
+
+// Bambu's start code purges at Z 0.2, then draws a line at 0.3, then the
+// first layer comes at 0.2: both purges are start code.
+TEST(Dialects, StartCodeAtTwoHeightsBeforeTheFirstMarkedLayer) {
+    std::string text = "M83\nG1 Z0.2\nG1 X10 Y0\nG1 X60 Y0 E3\nG1 Z0.3\nG1 X60 Y1\nG1 X10 Y1 E3\n" +
+                       square_layers(3, 0.2, 0.033, ";LAYER_CHANGE");
+    // square_layers writes absolute E after M82: the purge above is relative.
+    Parsed p = parse(text);
+    ASSERT_EQ(p.stack.layers.size(), 5u);
+    EXPECT_TRUE(p.stack.layers[0].purge);
+    EXPECT_TRUE(p.stack.layers[1].purge);
+    EXPECT_TRUE(p.stack.layers[2].on_bed);
+    EXPECT_EQ(p.stack.layers[3].below, 2);
+}
+
+// MatterControl with software levelling: Z follows the bed's mesh within
+// each layer. Layers come from the comments, at their nominal heights.
+TEST(Dialects, BedLevellingInTheFileLayersByComments) {
+    std::string s = "M82\nG92 E0\n";
+    double e = 0;
+    for (int l = 0; l < 5; ++l) {
+        s += "; LAYER:" + std::to_string(l) + "\n; LAYER_HEIGHT:0.2\n";
+        for (int k = 0; k <= 40; ++k) {
+            const double x = 10 + k * 0.5, z = 0.2 * (l + 1) + 0.02 * std::sin(k * 0.3) + 0.5;  // mesh offset
+            e += 0.02;
+            s += "G1 X" + std::to_string(x) + " Y20 Z" + std::to_string(z) + " E" + std::to_string(e) + "\n";
+        }
+    }
+    Parsed p = parse(s);
+    EXPECT_TRUE(p.stack.z_varies);
+    ASSERT_EQ(p.stack.layers.size(), 5u);
+    for (int l = 0; l < 5; ++l) EXPECT_NEAR(p.stack.layers[l].z, 0.2 * (l + 1), 1e-9) << l;
+    EXPECT_FALSE(layers::z_motion(p.program).spiral());
+}
+
+// A spiral vase rises through its extrusions and never falls: recognised
+// without any setting (Cura hands its scripts none).
+TEST(Dialects, SpiralVaseRecognisedByRisingZ) {
+    std::string s = "M82\nG92 E0\n;LAYER:0\n";
+    double e = 0;
+    for (int k = 0; k < 2000; ++k) {
+        const double a = k * 2 * std::numbers::pi / 100;
+        e += 0.03;
+        s += "G1 X" + std::to_string(50 + 10 * std::cos(a)) + " Y" + std::to_string(50 + 10 * std::sin(a)) + " Z" +
+             std::to_string(0.2 + k * 0.002) + " E" + std::to_string(e) + "\n";
+    }
+    Parsed p = parse(s);
+    EXPECT_TRUE(layers::z_motion(p.program).spiral());
+    EXPECT_FALSE(p.stack.z_varies);
+    Parsed flat = parse(square_layers(5, 0.2, 0.033, ";LAYER_CHANGE"));
+    EXPECT_FALSE(layers::z_motion(flat.program).spiral());
+}
+
+// Cura 4.9 and earlier escape the settings' newlines twice.
+TEST(Dialects, CuraSettingsEscapedTwice) {
+    std::string s = square_layers(2, 0.2, 0.033, ";LAYER:0");
+    s += ";SETTING_3 {\"global_quality\": \"[general]\\\\nversion = 4\\\\n[values]\\\\nmagic_spiralize = True\\\\nmat\n";
+    s += ";SETTING_3 erial_diameter = 2.85\\\\n\\\\n\"}\n";
+    Parsed p = parse(s);
+    EXPECT_TRUE(p.settings.spiral_vase);
+    EXPECT_EQ(p.program.config.at("material_diameter"), "2.85");
+}
+
+// Layer comments of Simplify3D, Kiri:Moto and KISSlicer are layer hints.
+TEST(Dialects, LayerCommentsOfOtherSlicers) {
+    for (const char* hint : {"; layer 1, Z = 0.300", ";; --- layer 0 (0.250 @ 0.255) ---",
+                             "; BEGIN_LAYER_OBJECT z=0.263 z_thickness=0.263"}) {
+        Parsed p = parse(square_layers(3, 0.2, 0.033, hint));
+        EXPECT_EQ(p.program.layer_hints.size(), 3u) << hint;
+    }
+    Parsed k = parse(square_layers(2, 0.263, 0.033, "; BEGIN_LAYER_OBJECT z=0.263 z_thickness=0.263"));
+    EXPECT_NEAR(k.program.layer_hints[0].height, 0.263, 1e-9);
+}
+
+// KISSlicer slices each object on a Z grid of its own: A at 0.263, 0.526,
+// B at 0.278, 0.556. B's first layer rests on the bed (its stated height
+// reaches it), and A's second layer stands on A's first, not on B's.
+TEST(Dialects, ObjectsOnZGridsOfTheirOwn) {
+    std::string s = "M82\nG92 E0\n";
+    double e = 0;
+    auto square = [&](double x0, double z, double h) {
+        s += "; BEGIN_LAYER_OBJECT z=" + std::to_string(z) + " z_thickness=" + std::to_string(h) + "\n";
+        s += "G1 Z" + std::to_string(z) + "\nG1 X" + std::to_string(x0) + " Y10\n";
+        for (double y = 10.2; y < 20; y += 0.4) {
+            e += 10 * 0.033;
+            s += "G1 X" + std::to_string(x0 + 10) + " Y" + std::to_string(y) + " E" + std::to_string(e) + "\n";
+            s += "G1 X" + std::to_string(x0) + " Y" + std::to_string(y + 0.2) + "\n";
+        }
+    };
+    for (int l = 1; l <= 4; ++l) {
+        square(10, 0.263 * l, 0.263);
+        square(40, 0.278 * l, 0.278);
+    }
+    Parsed p = parse(s);
+    ASSERT_EQ(p.stack.layers.size(), 8u);
+    EXPECT_TRUE(p.stack.layers[0].on_bed);
+    EXPECT_TRUE(p.stack.layers[1].on_bed);
+    EXPECT_FALSE(p.stack.layers[2].on_bed);
+    const auto& a2 = p.stack.layers[2];  // A at 0.526: beneath are A at 0.263 and B at 0.278
+    EXPECT_NE(std::find(a2.beneath.begin(), a2.beneath.end(), 0), a2.beneath.end());
+    EXPECT_TRUE(overhang::find_overhangs(p.stack, p.settings).layers.empty());
+}
+
+// Support extrusion follows the model's own lines, not a guessed diameter.
+TEST(Dialects, FilamentDiameterFromTheModelsLines) {
+    for (double d : {1.75, 2.85}) {
+        SynthGcode g(0.2, 0.45, d);
+        for (int l = 1; l <= 8; ++l) {
+            g.layer(0.2 * l);
+            g.filled_rect(100, 100, 120, 120);
+        }
+        Parsed stated = parse(g.str());
+        EXPECT_DOUBLE_EQ(stated.settings.filament_diameter, d);
+        EXPECT_TRUE(stated.settings.filament_note.empty()) << stated.settings.filament_note;
+        Parsed bare = parse(without_config(g.str()));
+        EXPECT_DOUBLE_EQ(bare.settings.filament_diameter, d);
+        EXPECT_EQ(bare.settings.filament_note.empty(), d == 1.75) << bare.settings.filament_note;
+        // A stated diameter the lines contradict (2.65x the area) gives way.
+        Parsed wrong = parse(g.str(), {{"filament_diameter", d == 1.75 ? "2.85" : "1.75"}});
+        EXPECT_DOUBLE_EQ(wrong.settings.filament_diameter, d);
+        EXPECT_FALSE(wrong.settings.filament_note.empty());
+    }
+    // Volumetric E (Cura UltiGCode, M200): mm^3, a "diameter" of area 1.
+    SynthGcode v(0.2, 0.45, 2 / std::sqrt(std::numbers::pi));
+    for (int l = 1; l <= 8; ++l) {
+        v.layer(0.2 * l);
+        v.filled_rect(100, 100, 120, 120);
+    }
+    Parsed vol = parse(without_config(v.str()));
+    EXPECT_NEAR(std::numbers::pi * vol.settings.filament_diameter * vol.settings.filament_diameter / 4, 1.0, 1e-9);
+}
+
+// RepRapFirmware's G10 P0 S195 R160 sets temperatures: no firmware retraction.
+TEST(Dialects, RepRapToolSettingIsNoRetraction) {
+    Parsed p = parse("G10 P0 S195 R160\nM83\n" + square_layers(2, 0.2, 0.033, ";LAYER_CHANGE").substr(4));
+    EXPECT_FALSE(p.program.saw_firmware_retraction);
+    Parsed fw = parse("G10\nG11\n" + square_layers(2, 0.2, 0.033, ";LAYER_CHANGE"));
+    EXPECT_TRUE(fw.program.saw_firmware_retraction);
+}
