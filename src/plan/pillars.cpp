@@ -274,7 +274,12 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     if (top == Top::Contact && !s.buildplate_only) {
         Column thin = proto;
         thin.radius = std::max(s.tip_radius, s.pillar_radius * kThinFactor);
-        if (thin.radius < proto.radius) return search(thin);
+        if (thin.radius < proto.radius)
+            if (auto chain = search(thin)) return chain;
+        // Last, the thinnest column the tip allows, in a slot beside a wall.
+        Column thinnest = proto;
+        thinnest.radius = s.tip_radius;
+        if (thinnest.radius < thin.radius) return search(thinnest);
     }
     return std::nullopt;
 }
