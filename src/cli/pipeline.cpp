@@ -112,9 +112,16 @@ void run(const Request& req, spdlog::logger& log) {
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
     layers::LayerStack stack = layers::build_layers(program, settings);
-    double model_mm = 0;
+    double model_mm = 0, own_support_mm = 0;
     for (const auto& m : program.moves)
-        if (m.kind == gcode::MoveKind::Extrude) model_mm += m.e;
+        if (m.kind == gcode::MoveKind::Extrude) (gcode::is_support(m.role) ? own_support_mm : model_mm) += m.e;
+    // A raft or the slicer's own support (Cura's raft is typed SUPPORT,
+    // Simplify3D may add support): it holds what lies on it like any
+    // material, and scaffold adds only what is still unheld.
+    if (own_support_mm > 0)
+        log.info("the file already holds {:.0f} mm of the slicer's own support or raft: scaffold adds only what is still "
+                 "needed",
+                 own_support_mm);
     // Print-time change, by the validator's estimate; the written file is
     // read back for it, so only when that is cheap.
     bool estimate_time = req.output != "-" && program.text.size() < 50'000'000;
