@@ -488,10 +488,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             }
             const LayerGrids& g = grids(k);
             below |= g.support;
+            tips |= g.support;  // support on the three layers below: a tip where it lies under this layer's model
             if (dz <= std::max(h_nom, layer.nominal_height) + kZEps || k == layer.below) {
                 below |= g.model;
                 skirt_below |= g.skirt;
-                tips |= g.support;
             }
             have_below = true;
         }
@@ -502,7 +502,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             skirt_below |= g.skirt;
             tips |= g.support;
         }
-        tips.subtract(here.support);  // support that ends here is a contact tip
+        // METHOD's rule (c): a contact tip of this layer is support that lies
+        // directly under model material of this layer (within one cell). A
+        // tip that touches the model only higher up holds nothing here.
+        tips &= here.model.dilated(o.resolution);
         const double reach = layer.height * slope + o.resolution / 2;
         skirt_below |= below;
         const layers::BitGrid held_grid = skirt_below.dilated(reach);

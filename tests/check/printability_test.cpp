@@ -355,3 +355,40 @@ TEST(Check, OriginalsOwnProblemsAreNoFailure) {
     EXPECT_TRUE(compared.ok()) << check::report_text(compared);
     EXPECT_EQ(compared.original_problems, 1);
 }
+
+namespace {
+
+// A 2 x 2 mm sheet at layer 11 (z 2.2) with nothing beneath it and a
+// support pillar (a small filled square, layers 1..10) at (px, 102); the
+// sheet's next layer reaches out over the pillar where it stands beside it.
+SynthGcode sheet_on_a_tip(double px) {
+    SynthGcode g;
+    for (int l = 1; l <= 12; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.filled_rect(80, 100, 90, 110);  // a tower that keeps the layers going
+        if (l <= 10) {
+            g.type("Support material");
+            g.filled_rect(px - 0.4, 101.6, px + 0.4, 102.4);
+        } else {
+            g.type("Solid infill");
+            g.filled_rect(103, 101, l == 11 || px < 105 ? 105 : 107, 103);
+        }
+    }
+    return g;
+}
+
+}  // namespace
+
+// METHOD's rule (c): a tip holds the sheet that rests on it, 3.5 mm around;
+// a tip that touches the model only a layer higher holds nothing below it.
+TEST(Check, TipHoldsOnlyTheSheetRestingOnIt) {
+    auto under = run(sheet_on_a_tip(104));
+    EXPECT_EQ(under.unheld_model_mm2, 0) << check::report_text(under);
+    // Beside the first sheet, under the second only: all of the first sheet
+    // lies within 3.5 mm of it, but it rests on nothing.
+    auto beside = run(sheet_on_a_tip(106.2));
+    EXPECT_FALSE(beside.ok());
+    ASSERT_FALSE(beside.worst_unheld.empty());
+    EXPECT_NEAR(beside.worst_unheld[0].z, 2.2, 1e-6);
+}
