@@ -62,6 +62,7 @@ struct Program {
     std::map<std::string, std::string> config;  // slicer settings found in the file
     bool saw_firmware_retraction = false;        // G10/G11 present
     bool saw_relative_e = false;                 // M83 present
+    bool relative_e_at_start = false;            // no M82/M83, but E reads as relative
     bool saw_arcs = false;
 
     std::string_view line_text(std::size_t i) const {

@@ -96,6 +96,13 @@ struct Parser {
     float width = 0;
     std::string cura_settings;
     bool simplify3d = false;
+    bool saw_e_mode = false;  // M82 or M83 seen
+    // XY moves with an E word, and those of them that did not move E
+    // forward: a file that never says M82 or M83 may still be written with
+    // relative E (the firmware's default); read as absolute, its E then
+    // stands still or steps back on about half of the beads.
+    std::size_t e_moves = 0, e_not_forward = 0;
+    bool looks_relative() const { return e_moves > 100 && e_not_forward * 5 > e_moves * 2; }
 
     void comment_line(std::uint32_t i, std::string_view c) {
         if (starts_with(c, "TYPE:")) { role = role_from_name(trim(c.substr(5))); return; }
@@ -162,10 +169,15 @@ struct Parser {
             p.saw_firmware_retraction = true;
         if (cmd.letter == 'G' && (cmd.code == 2 || cmd.code == 3)) p.saw_arcs = true;
         if (cmd.is('M', 83)) p.saw_relative_e = true;
+        if (cmd.is('M', 82) || cmd.is('M', 83)) saw_e_mode = true;
         std::size_t before = p.moves.size();
         if (const char* e = step(st, cmd, i, p.moves))
             throw Error(p.path, i + 1, std::string(e) + ": '" + std::string(trim(text.substr(0, 80))) + "'");
         if (p.moves.size() == before) return;
+        if (cmd.has('E') && (cmd.has('X') || cmd.has('Y'))) {
+            ++e_moves;
+            e_not_forward += p.moves.back().kind != MoveKind::Extrude;
+        }
         // Slic3r 1.x names the role per line in a trailing comment.
         Role r = role;
         if (!cmd.comment.empty() && p.dialect == Dialect::Slic3r) {
@@ -185,7 +197,7 @@ namespace {
 
 // Lines and moves in one pass. On a mapped file the bytes behind the pass
 // are released as it goes, so the text is never resident as a whole.
-Program parse_text(Text text, std::string path) {
+Program parse_text(Text text, std::string path, bool relative_e = false) {
     Program p;
     p.path = std::move(path);
     p.text = std::move(text);
@@ -200,6 +212,7 @@ Program parse_text(Text text, std::string path) {
     constexpr std::size_t kWindow = std::size_t{16} << 20;
     std::size_t released = 0;
     Parser parser{p, {}, {}, Role::Unknown, 0, {}, false};
+    parser.st.absolute_e = !relative_e;
     std::size_t pos = 0;
     while (pos < t.size()) {
         const void* nl = std::memchr(t.data() + pos, '\n', t.size() - pos);
@@ -219,6 +232,8 @@ Program parse_text(Text text, std::string path) {
     }
     t.release(released, t.size());
     if (!parser.cura_settings.empty()) parse_cura_settings(parser.cura_settings, p.config);
+    if (!relative_e && !parser.saw_e_mode && parser.looks_relative()) return parse_text(std::move(p.text), std::move(p.path), true);
+    p.relative_e_at_start = relative_e;
     return p;
 }
 

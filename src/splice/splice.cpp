@@ -203,6 +203,8 @@ int block_marker(std::string_view t) {
     if (starts("M486 S")) return t.substr(6, 2) == "-1" ? -1 : 1;
     if (starts("M620 S")) return 1;
     if (starts("M621 S")) return -1;
+    if (starts("; CP TOOLCHANGE START")) return 1;  // PrusaSlicer's wipe tower tool change
+    if (starts("; CP TOOLCHANGE END")) return -1;
     if (starts("; start printing object") || starts(";start printing object")) return 1;
     if (starts("; stop printing object") || starts(";stop printing object")) return -1;
     return 0;
@@ -238,6 +240,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     SpliceResult result;
     // One pass of the machine over the file, pausing at each insertion point.
     gcode::MachineState st;
+    st.absolute_e = !program.relative_e_at_start;
     gcode::Command cmd;
     std::vector<gcode::Move> scratch;
     std::string last_type;

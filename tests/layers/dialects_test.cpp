@@ -239,3 +239,62 @@ TEST(Dialects, RepRapToolSettingIsNoRetraction) {
     Parsed fw = parse("G10\nG11\n" + square_layers(2, 0.2, 0.033, ";LAYER_CHANGE"));
     EXPECT_TRUE(fw.program.saw_firmware_retraction);
 }
+
+// Relative E with no M83 in the file (the firmware's default): recognised
+// by E stepping back on half the beads when read as absolute.
+TEST(Dialects, RelativeEWithoutM83) {
+    SynthGcode g;
+    for (int l = 1; l <= 6; ++l) {
+        g.layer(0.2 * l);
+        g.filled_rect(100, 100, 110, 110);
+    }
+    // The same file with relative E: each E word becomes its step.
+    const std::string abs_text = g.str();
+    std::string rel;
+    double last = 0;
+    std::size_t pos = 0;
+    while (pos < abs_text.size()) {
+        std::size_t nl = abs_text.find('\n', pos);
+        std::string line = abs_text.substr(pos, nl - pos);
+        pos = nl + 1;
+        if (line.rfind("M82", 0) == 0) continue;
+        std::size_t e = line.find(" E");
+        if (line.rfind("G92", 0) == 0 && e != std::string::npos) {
+            last = std::stod(line.substr(e + 2));
+            continue;
+        }
+        if (line.rfind("G1", 0) == 0 && e != std::string::npos) {
+            std::size_t end = line.find(' ', e + 1);
+            const double v = std::stod(line.substr(e + 2, end == std::string::npos ? std::string::npos : end - e - 2));
+            line = line.substr(0, e) + " E" + std::to_string(v - last) + (end == std::string::npos ? "" : line.substr(end));
+            last = v;
+        }
+        rel += line + "\n";
+    }
+    Parsed a = parse(abs_text), b = parse(rel), c = parse("M83\n" + rel);
+    EXPECT_FALSE(a.program.relative_e_at_start);
+    EXPECT_TRUE(b.program.relative_e_at_start);
+    EXPECT_FALSE(c.program.relative_e_at_start);  // said so: nothing to guess
+    ASSERT_EQ(a.program.moves.size(), b.program.moves.size());
+    for (std::size_t i = 0; i < a.program.moves.size(); ++i) {
+        EXPECT_EQ(a.program.moves[i].kind, b.program.moves[i].kind) << i;
+        EXPECT_NEAR(a.program.moves[i].e, b.program.moves[i].e, 1e-5) << i;
+    }
+}
+    EXPECT_FALSE(parse(abs_g.str()).program.relative_e_at_start);
+}
+
+// A file with no comments at all (no roles, no layer comments, no config)
+// and one with thumbnails (long base64 comment lines) before the header.
+TEST(Dialects, NoCommentsAndThumbnails) {
+    std::string bare = square_layers(6, 0.2, 0.033, "");
+    Parsed p = parse(bare);
+    EXPECT_EQ(p.stack.layers.size(), 6u);
+    EXPECT_TRUE(p.program.layer_hints.empty());
+    std::string thumb = "; thumbnail begin 300x300 4096\n";
+    for (int k = 0; k < 50; ++k) thumb += "; " + std::string(78, 'A') + "\n";
+    thumb += "; thumbnail end\n";
+    Parsed t = parse(thumb + square_layers(6, 0.2, 0.033, ";LAYER_CHANGE"));
+    EXPECT_EQ(t.stack.layers.size(), 6u);
+    EXPECT_TRUE(t.stack.layers[0].on_bed);
+}
