@@ -73,26 +73,26 @@ std::string deflate(std::string_view in) {
 std::string inflate_data(std::string_view in, std::size_t expect) {
     z_stream z{};
     if (inflateInit(&z) != Z_OK) throw Error("zlib could not start");
+    const std::size_t cap = expect + 1;  // one byte more shows data longer than said
     std::string out;
-    out.resize(std::min<std::size_t>(expect, in.size() * 4 + 64));
+    out.resize(std::min<std::size_t>(cap, in.size() * 4 + 64));
     z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in.data()));
     z.avail_in = static_cast<uInt>(in.size());
     int rc = Z_OK;
     std::size_t have = 0;
     while (rc == Z_OK) {
         if (have == out.size()) {
-            if (out.size() >= expect) break;
-            out.resize(std::min<std::size_t>(expect, out.size() * 2 + 64));
+            if (out.size() >= cap) break;
+            out.resize(std::min<std::size_t>(cap, out.size() * 2 + 64));
         }
         z.next_out = reinterpret_cast<Bytef*>(out.data() + have);
         z.avail_out = static_cast<uInt>(out.size() - have);
         rc = inflate(&z, Z_NO_FLUSH);
         have = out.size() - z.avail_out;
-        if (rc == Z_BUF_ERROR && z.avail_in == 0) break;
     }
     inflateEnd(&z);
-    if (rc != Z_STREAM_END) throw Error(rc == Z_OK || rc == Z_BUF_ERROR ? "deflate data is cut short or longer than the block says"
-                                                                          : "deflate data is damaged");
+    if (have > expect) throw Error("deflate data is longer than the block header says");
+    if (rc != Z_STREAM_END) throw Error(rc == Z_OK || rc == Z_BUF_ERROR ? "deflate data is cut short" : "deflate data is damaged");
     out.resize(have);
     return out;
 }

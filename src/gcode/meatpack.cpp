@@ -75,7 +75,7 @@ std::string encode(std::string_view text, bool keep_comment_lines) {
         pos = end + 1;
         if (raw.find('\xFF') != std::string_view::npos)
             throw Error("a 0xFF byte cannot be written with MeatPack");
-        while (!raw.empty() && (raw.back() == '\r' || raw.back() == ' ' || raw.back() == '\t')) raw.remove_suffix(1);
+        if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
         std::size_t first = raw.find_first_not_of(" \t");
         if (first == std::string_view::npos) continue;  // blank: the decoder drops it anyway
         if (raw[first] == ';') {
