@@ -84,9 +84,17 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
     p.text.release(0, p.text.size());  // the scan touched every page; the writer reads them back piece by piece
 }
 
+gcode::OutputFormat output_format(const std::string& name) {
+    if (name.empty()) return gcode::OutputFormat::SameAsInput;
+    if (name == "ascii") return gcode::OutputFormat::Ascii;
+    if (name == "binary") return gcode::OutputFormat::Binary;
+    throw Error("--output-format must be ascii or binary (got '" + name + "')");
+}
+
 }  // namespace
 
 void run(const Request& req, spdlog::logger& log) {
+    const gcode::OutputFormat format = output_format(req.output_format);
     Timings time;
     gcode::Program program = gcode::read_file(req.input);
     time.lap("read");
@@ -96,7 +104,7 @@ void run(const Request& req, spdlog::logger& log) {
     log.debug("{}: {} lines, {} moves, dialect {}", program.path, program.lines.size(), program.moves.size(),
               gcode::dialect_name(program.dialect));
     if (settings.method == Method::None) {
-        gcode::write_output(req.output, program, {});
+        gcode::write_output(req.output, program, {}, format);
         log.info("--method none: written unchanged");
         return;
     }
@@ -160,7 +168,7 @@ void run(const Request& req, spdlog::logger& log) {
     std::vector<gcode::Edit> edits = std::move(spliced.edits);
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
     update_totals(program, spliced.filament_mm, settings.filament_diameter, edits);
-    gcode::write_output(req.output, program, std::move(edits));
+    gcode::write_output(req.output, program, std::move(edits), format);
     time.lap("write");
 
     std::string time_change;
