@@ -35,7 +35,9 @@ int main(int argc, char** argv) {
         "Adds support structures (pillars and bridges) to G-code sliced without supports.\n"
         "INPUT is rewritten in place unless -o is given (the slicer post-processing hook\n"
         "case); '-' reads standard input. Slicer settings are read from the file's own\n"
-        "config block, then SLIC3R_* environment variables, then the options below.\n\nGeneral");
+        "config block, then SLIC3R_* environment variables, then the options below.\n"
+        "Binary G-code (PrusaSlicer .bgcode) is recognised by its content and written\n"
+        "back as binary G-code unless --output-format says otherwise.\n\nGeneral");
     general.add_options()
         ("help,h", "show this help and exit")
         ("version", "print the version and exit")
