@@ -3,6 +3,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <set>
@@ -156,6 +157,26 @@ std::string base64(std::string_view in) {
         out.push_back(i + 2 < in.size() ? kAlphabet[v & 63] : '=');
     }
     return out;
+}
+
+// Decodes base64, skipping what is not in the alphabet; false on a bad tail.
+bool unbase64(std::string_view in, std::string& out) {
+    std::uint32_t acc = 0;
+    int bits = 0;
+    for (char c : in) {
+        int v = c >= 'A' && c <= 'Z' ? c - 'A'
+                : c >= 'a' && c <= 'z' ? c - 'a' + 26
+                : c >= '0' && c <= '9' ? c - '0' + 52
+                : c == '+' ? 62 : c == '/' ? 63 : -1;
+        if (v < 0) continue;
+        acc = (acc << 6) | static_cast<std::uint32_t>(v);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            out.push_back(static_cast<char>((acc >> bits) & 0xFF));
+        }
+    }
+    return bits < 6;
 }
 
 // Appends lines to the ASCII text, counting them.
@@ -499,6 +520,28 @@ std::string encode_ascii(std::string_view ascii, const Settings& s) {
     } else {
         file.emplace_back("Producer", "scaffold " SCAFFOLD_VERSION);
     }
+    std::vector<Thumbnail> thumbnails;
+    for (std::size_t i = first; i < lines.size(); ++i) {
+        // "; thumbnail[_JPG|_QOI] begin WxH LEN", base64 lines, "; thumbnail... end"
+        std::string_view l = lines[i];
+        std::uint16_t format = l.substr(0, 18) == "; thumbnail begin " ? 0
+                               : l.substr(0, 22) == "; thumbnail_JPG begin " ? 1
+                               : l.substr(0, 22) == "; thumbnail_QOI begin " ? 2 : 9;
+        if (format == 9) continue;
+        std::string_view dims = l.substr(l.find(" begin ") + 7);
+        unsigned w = 0, h = 0;
+        if (std::sscanf(std::string(dims).c_str(), "%ux%u", &w, &h) != 2 || w > 0xFFFF || h > 0xFFFF) continue;
+        std::size_t end = i + 1;
+        while (end < lines.size() && lines[end].find(" end") == std::string_view::npos) ++end;
+        if (end == lines.size()) continue;
+        std::string b64;
+        for (std::size_t k = i + 1; k < end; ++k) b64.append(lines[k].substr(std::min<std::size_t>(2, lines[k].size())));
+        Thumbnail t{format, static_cast<std::uint16_t>(w), static_cast<std::uint16_t>(h), {}};
+        if (!unbase64(b64, t.data)) continue;
+        thumbnails.push_back(std::move(t));
+        for (std::size_t k = i; k <= end; ++k) keep[k] = false;
+        i = end;
+    }
     std::set<std::string_view> print_keys(std::begin(kPrintKeys), std::end(kPrintKeys));
     std::vector<std::pair<std::string_view, std::string_view>> found;  // every "; k = v" outside the config
     bool in_config = false;
@@ -545,6 +588,10 @@ std::string encode_ascii(std::string_view ascii, const Settings& s) {
     std::string out = file_header(s.checksum);
     out.append(make_block(BlockType::FileMetadata, s.file_metadata, none, metadata_text(file), s.checksum));
     out.append(make_block(BlockType::PrinterMetadata, s.printer_metadata, none, metadata_text(printer), s.checksum));
+    for (const Thumbnail& t : thumbnails) {
+        std::uint16_t params[3] = {t.format, t.width, t.height};
+        out.append(make_block(BlockType::Thumbnail, s.thumbnail, params, t.data, s.checksum));
+    }
     out.append(make_block(BlockType::PrintMetadata, s.print_metadata, none, metadata_text(print), s.checksum));
     out.append(make_block(BlockType::SlicerMetadata, s.slicer_metadata, none, metadata_text(slicer), s.checksum));
     append_gcode_blocks(out, gcode, s);
