@@ -23,4 +23,11 @@ now="$(grep -m1 '^; filament used \[mm\] = ' "$tmp/decoded.gcode")"
 [ "$was" != "$now" ] || { echo "FAIL: filament used not updated ($now)"; exit 1; }
 "$build/scaffold-check" "$work" --original "$orig" > "$tmp/check.txt" || {
   echo "FAIL: the binary output fails scaffold-check"; cat "$tmp/check.txt"; exit 1; }
+# A damaged binary file (cut short): one line naming the block, exit 1, the file untouched.
+head -c 100000 "$orig" > "$tmp/.cut.gcode.tmp"
+cp "$tmp/.cut.gcode.tmp" "$tmp/cut.before"
+if "$build/scaffold" "$tmp/.cut.gcode.tmp" 2> "$tmp/err.txt"; then echo "FAIL: a cut binary file was accepted"; exit 1; fi
+[ "$(wc -l < "$tmp/err.txt")" -eq 1 ] || { echo "FAIL: not a one-line error:"; cat "$tmp/err.txt"; exit 1; }
+grep -q "binary G-code block [0-9]* (G-code) at byte [0-9]*: " "$tmp/err.txt" || { echo "FAIL: error does not name the block:"; cat "$tmp/err.txt"; exit 1; }
+cmp -s "$tmp/.cut.gcode.tmp" "$tmp/cut.before" || { echo "FAIL: the damaged input was changed"; exit 1; }
 echo "binary G-code hook: in place, still binary, supported ($was -> $now), passes scaffold-check"
