@@ -196,10 +196,12 @@ struct AsciiOut {
     }
 };
 
+constexpr std::uint16_t kTypeNotRead = 0xFFFF;
+
 std::string block_where(const std::string& path, std::size_t index, std::uint16_t type, std::uint64_t offset) {
     (void)path;
-    return "binary G-code block " + std::to_string(index) + " (" + block_type_name(type) + ") at byte " +
-           std::to_string(offset) + ": ";
+    std::string kind = type == kTypeNotRead ? "" : std::string(" (") + block_type_name(type) + ")";
+    return "binary G-code block " + std::to_string(index) + kind + " at byte " + std::to_string(offset) + ": ";
 }
 
 }  // namespace
@@ -256,7 +258,7 @@ Decoded decode(const Text& bytes, const std::string& path) {
         Block blk;
         blk.offset = pos;
         std::size_t left = b.size() - pos;
-        if (left < 8) throw Error(path, 0, block_where(path, index, 0xFFFF, pos) + "the file ends inside the block header");
+        if (left < 8) throw Error(path, 0, block_where(path, index, kTypeNotRead, pos) + "the file ends inside the block header");
         blk.type = u16(b, pos);
         std::string where = block_where(path, index, blk.type, pos);
         if (blk.type > 5) throw Error(path, 0, where + "unknown block type " + std::to_string(blk.type));

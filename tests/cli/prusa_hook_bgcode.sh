@@ -23,6 +23,10 @@ now="$(grep -m1 '^; filament used \[mm\] = ' "$tmp/decoded.gcode")"
 [ "$was" != "$now" ] || { echo "FAIL: filament used not updated ($now)"; exit 1; }
 "$build/scaffold-check" "$work" --original "$orig" > "$tmp/check.txt" || {
   echo "FAIL: the binary output fails scaffold-check"; cat "$tmp/check.txt"; exit 1; }
+# --method none: byte for byte; --output-format must be ascii or binary.
+"$build/scaffold" "$orig" --method none -o "$tmp/same.bgcode" -q
+cmp -s "$orig" "$tmp/same.bgcode" || { echo "FAIL: --method none changed a binary file"; exit 1; }
+if "$build/scaffold" "$orig" --output-format text -o "$tmp/x" 2>/dev/null; then echo "FAIL: --output-format text accepted"; exit 1; fi
 # A damaged binary file (cut short): one line naming the block, exit 1, the file untouched.
 head -c 100000 "$orig" > "$tmp/.cut.gcode.tmp"
 cp "$tmp/.cut.gcode.tmp" "$tmp/cut.before"
