@@ -58,9 +58,20 @@ double filament_volume_cm3(double mm, double diameter) { return mm * std::number
 // printer's display and print-cost plugins stay right.
 void update_totals(const gcode::Program& p, double add_mm, double diameter, std::vector<gcode::Edit>& edits) {
     double add_cm3 = filament_volume_cm3(add_mm, diameter);
+    // Grams and cost (PrusaSlicer's, also in binary G-code's metadata) only
+    // when the config gives one density and one price.
+    auto config_number = [&](const char* key) {
+        auto it = p.config.find(key);
+        if (it == p.config.end() || it->second.find(',') != std::string::npos) return 0.0;
+        return std::strtod(it->second.c_str(), nullptr);
+    };
+    double add_g = add_cm3 * config_number("filament_density");
+    double add_cost = add_g / 1000 * config_number("filament_cost");
     for (std::uint32_t i = 0; i < p.lines.size(); ++i) {
         std::string_view t = p.line_text(i);
-        if (t.empty() || t[0] != ';' || t.find("ilament used") == std::string_view::npos) continue;
+        if (t.empty() || t[0] != ';' ||
+            (t.find("ilament used") == std::string_view::npos && t.find("ilament cost") == std::string_view::npos))
+            continue;
         std::string s(t);
         auto value_after = [&](std::string_view key, double& v, std::size_t& at) {
             std::size_t k = s.find(key);
@@ -75,6 +86,10 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
         std::string repl;
         if (value_after("; filament used [mm] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm, 2);
         else if (value_after("; filament used [cm3] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_cm3, 2);
+        else if (add_g > 0 && (value_after("; total filament used [g] = ", v, at) || value_after("; filament used [g] = ", v, at)))
+            repl = s.substr(0, at) + fixed(v + add_g, 2);
+        else if (add_cost > 0 && (value_after("; total filament cost = ", v, at) || value_after("; filament cost = ", v, at)))
+            repl = s.substr(0, at) + fixed(v + add_cost, 2);
         else if (value_after(";Filament used: ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm / 1000, 5) + "m";
         else if (value_after("; filament used = ", v, at))
             repl = s.substr(0, at) + fixed(v + add_mm, 1) + "mm (" + fixed(filament_volume_cm3(v + add_mm, diameter), 1) + "cm3)";

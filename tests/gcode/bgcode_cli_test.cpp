@@ -57,6 +57,10 @@ std::vector<std::string> commands(std::string_view text) {
     return out;
 }
 
+// The program is built beside the tests in build/, not in the sanitizer
+// build (tools/test builds only scaffold_tests there): skip without it.
+bool have_program() { return fs::exists(std::string(SCAFFOLD_BINARY_DIR) + "/scaffold"); }
+
 int run(const std::string& args) {
     std::string cmd = std::string(SCAFFOLD_BINARY_DIR) + "/scaffold -q " + args;
     return std::system(cmd.c_str());
@@ -65,6 +69,7 @@ int run(const std::string& args) {
 }  // namespace
 
 TEST(BgcodeCli, BinaryOutputHasTheCommandsOfTheAsciiOutput) {
+    if (!have_program()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
     std::string dir = testing::TempDir() + "/bgcode_cli";
     fs::create_directories(dir);
     std::string ascii = gunzip(std::string(SCAFFOLD_TEST_DATA) + "/corpus/overhang_test.prusaslicer25.nosup.gcode.gz");
@@ -110,6 +115,44 @@ TEST(BgcodeCli, BinaryOutputHasTheCommandsOfTheAsciiOutput) {
         // --output-format ascii on the binary input: the same commands again.
         ASSERT_EQ(run(dir + "/in.bgcode --output-format ascii -o " + dir + "/out.txt"), 0);
         EXPECT_TRUE(commands(read_all(dir + "/out.txt")) == same_input);
+    }
+    fs::remove_all(dir);
+}
+
+namespace {
+// The number after "; KEY = " in the text (first occurrence), or -1.
+double value_of(const std::string& text, const std::string& key) {
+    std::size_t at = text.find("\n; " + key + " = ");
+    return at == std::string::npos ? -1 : std::strtod(text.c_str() + at + key.size() + 6, nullptr);
+}
+}  // namespace
+
+// With a density and a price in the config, grams and cost grow with the
+// support, in ASCII comments and in binary print metadata alike.
+TEST(BgcodeCli, GramsAndCostFollowTheSupport) {
+    if (!have_program()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
+    std::string dir = testing::TempDir() + "/bgcode_cli_totals";
+    fs::create_directories(dir);
+    std::string ascii = gunzip(std::string(SCAFFOLD_TEST_DATA) + "/corpus/overhang_test.prusaslicer25.nosup.gcode.gz");
+    for (auto [from, to] : {std::pair<std::string, std::string>{"\n; filament_density = 0\n", "\n; filament_density = 1.25\n"},
+                            {"\n; filament_cost = 0\n", "\n; filament_cost = 20\n"}}) {
+        std::size_t at = ascii.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        ascii.replace(at, from.size(), to);
+    }
+    write_all(dir + "/in.gcode", ascii);
+    write_all(dir + "/in.bgcode", bgcode::encode_ascii(ascii, bgcode::Settings{}));
+    ASSERT_EQ(run(dir + "/in.gcode -o " + dir + "/out.gcode"), 0);
+    ASSERT_EQ(run(dir + "/in.bgcode -o " + dir + "/out.bgcode"), 0);
+    std::string text_out = read_all(dir + "/out.gcode");
+    std::string bin_out = bgcode::decode(scaffold::gcode::Text(read_all(dir + "/out.bgcode")), "out").ascii;
+    for (const std::string* out : {&text_out, &bin_out}) {
+        double cm3 = value_of(*out, "filament used [cm3]") - value_of(ascii, "filament used [cm3]");
+        double g = value_of(*out, "total filament used [g]") - value_of(ascii, "total filament used [g]");
+        double cost = value_of(*out, "total filament cost") - value_of(ascii, "total filament cost");
+        EXPECT_GT(cm3, 0.1);
+        EXPECT_NEAR(g, cm3 * 1.25, 0.02);
+        EXPECT_NEAR(cost, g * 20 / 1000, 0.011);
     }
     fs::remove_all(dir);
 }
