@@ -198,8 +198,7 @@ struct AsciiOut {
 
 constexpr std::uint16_t kTypeNotRead = 0xFFFF;
 
-std::string block_where(const std::string& path, std::size_t index, std::uint16_t type, std::uint64_t offset) {
-    (void)path;
+std::string block_where(std::size_t index, std::uint16_t type, std::uint64_t offset) {
     std::string kind = type == kTypeNotRead ? "" : std::string(" (") + block_type_name(type) + ")";
     return "binary G-code block " + std::to_string(index) + kind + " at byte " + std::to_string(offset) + ": ";
 }
@@ -258,9 +257,9 @@ Decoded decode(const Text& bytes, const std::string& path) {
         Block blk;
         blk.offset = pos;
         std::size_t left = b.size() - pos;
-        if (left < 8) throw Error(path, 0, block_where(path, index, kTypeNotRead, pos) + "the file ends inside the block header");
+        if (left < 8) throw Error(path, 0, block_where(index, kTypeNotRead, pos) + "the file ends inside the block header");
         blk.type = u16(b, pos);
-        std::string where = block_where(path, index, blk.type, pos);
+        std::string where = block_where(index, blk.type, pos);
         if (blk.type > 5) throw Error(path, 0, where + "unknown block type " + std::to_string(blk.type));
         blk.compression = u16(b, pos + 2);
         if (blk.compression > 3) throw Error(path, 0, where + "unknown compression " + std::to_string(blk.compression));
