@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
         "(unheld area), support that comes within the XY gap of the model, extrusion\n"
         "amounts that make no sense, and a print-time estimate. It reads only G-code:\n"
         "support is what is typed as support (;TYPE:Support material, Cura SUPPORT,\n"
-        "Slic3r '; support material') or, with --original, what the original lacks.\n\n"
+        "Slic3r '; support material') or, with --original, what the original lacks.\n"
+        "FILE and --original may be plain or binary G-code (.bgcode, recognised by content).\n\n"
         "Exit status: 0 printable, 1 not printable (reasons listed), 2 bad input or usage.\n\nOptions");
     opts.add_options()
         ("help,h", "show this help and exit")

@@ -58,9 +58,20 @@ double filament_volume_cm3(double mm, double diameter) { return mm * std::number
 // printer's display and print-cost plugins stay right.
 void update_totals(const gcode::Program& p, double add_mm, double diameter, std::vector<gcode::Edit>& edits) {
     double add_cm3 = filament_volume_cm3(add_mm, diameter);
+    // Grams and cost (PrusaSlicer's, also in binary G-code's metadata) only
+    // when the config gives one density and one price.
+    auto config_number = [&](const char* key) {
+        auto it = p.config.find(key);
+        if (it == p.config.end() || it->second.find(',') != std::string::npos) return 0.0;
+        return std::strtod(it->second.c_str(), nullptr);
+    };
+    double add_g = add_cm3 * config_number("filament_density");
+    double add_cost = add_g / 1000 * config_number("filament_cost");
     for (std::uint32_t i = 0; i < p.lines.size(); ++i) {
         std::string_view t = p.line_text(i);
-        if (t.empty() || t[0] != ';' || t.find("ilament used") == std::string_view::npos) continue;
+        if (t.empty() || t[0] != ';' ||
+            (t.find("ilament used") == std::string_view::npos && t.find("ilament cost") == std::string_view::npos))
+            continue;
         std::string s(t);
         auto value_after = [&](std::string_view key, double& v, std::size_t& at) {
             std::size_t k = s.find(key);
@@ -75,6 +86,10 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
         std::string repl;
         if (value_after("; filament used [mm] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm, 2);
         else if (value_after("; filament used [cm3] = ", v, at)) repl = s.substr(0, at) + fixed(v + add_cm3, 2);
+        else if (add_g > 0 && (value_after("; total filament used [g] = ", v, at) || value_after("; filament used [g] = ", v, at)))
+            repl = s.substr(0, at) + fixed(v + add_g, 2);
+        else if (add_cost > 0 && (value_after("; total filament cost = ", v, at) || value_after("; filament cost = ", v, at)))
+            repl = s.substr(0, at) + fixed(v + add_cost, 2);
         else if (value_after(";Filament used: ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm / 1000, 5) + "m";
         else if (value_after("; filament used = ", v, at))
             repl = s.substr(0, at) + fixed(v + add_mm, 1) + "mm (" + fixed(filament_volume_cm3(v + add_mm, diameter), 1) + "cm3)";
@@ -84,9 +99,17 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
     p.text.release(0, p.text.size());  // the scan touched every page; the writer reads them back piece by piece
 }
 
+gcode::OutputFormat output_format(const std::string& name) {
+    if (name.empty()) return gcode::OutputFormat::SameAsInput;
+    if (name == "ascii") return gcode::OutputFormat::Ascii;
+    if (name == "binary") return gcode::OutputFormat::Binary;
+    throw Error("--output-format must be ascii or binary (got '" + name + "')");
+}
+
 }  // namespace
 
 void run(const Request& req, spdlog::logger& log) {
+    const gcode::OutputFormat format = output_format(req.output_format);
     Timings time;
     gcode::Program program = gcode::read_file(req.input);
     time.lap("read");
@@ -97,7 +120,7 @@ void run(const Request& req, spdlog::logger& log) {
     log.debug("{}: {} lines, {} moves, dialect {}", program.path, program.lines.size(), program.moves.size(),
               gcode::dialect_name(program.dialect));
     if (settings.method == Method::None) {
-        gcode::write_output(req.output, program, {});
+        gcode::write_output(req.output, program, {}, format);
         log.info("--method none: written unchanged");
         return;
     }
@@ -178,7 +201,7 @@ void run(const Request& req, spdlog::logger& log) {
     std::vector<gcode::Edit> edits = std::move(spliced.edits);
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
     update_totals(program, spliced.filament_mm, settings.filament_diameter, edits);
-    gcode::write_output(req.output, program, std::move(edits));
+    gcode::write_output(req.output, program, std::move(edits), format);
     time.lap("write");
 
     std::string time_change;

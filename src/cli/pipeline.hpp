@@ -17,6 +17,7 @@ struct Request {
     std::map<std::string, std::string> files;  // report, dump-points, dump-layers, preview
     SettingMap overrides;                      // scaffold options by option name
     SettingMap slicer_overrides;               // --set KEY=VALUE
+    std::string output_format;                 // "ascii", "binary" or empty: as the input
 };
 
 // Throws scaffold::Error; on error nothing has been written to the output.

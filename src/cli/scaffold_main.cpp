@@ -35,11 +35,16 @@ int main(int argc, char** argv) {
         "Adds support structures (pillars and bridges) to G-code sliced without supports.\n"
         "INPUT is rewritten in place unless -o is given (the slicer post-processing hook\n"
         "case); '-' reads standard input. Slicer settings are read from the file's own\n"
-        "config block, then SLIC3R_* environment variables, then the options below.\n\nGeneral");
+        "config block, then SLIC3R_* environment variables, then the options below.\n"
+        "Binary G-code (PrusaSlicer .bgcode) is recognised by its content and written\n"
+        "back as binary G-code unless --output-format says otherwise.\n\nGeneral");
     general.add_options()
         ("help,h", "show this help and exit")
         ("version", "print the version and exit")
         ("output,o", po::value<std::string>(), "write here instead of rewriting INPUT in place ('-' = stdout)")
+        ("output-format", po::value<std::string>(),
+         "ascii or binary (Prusa .bgcode, with the input's compression when it was binary, else "
+         "PrusaSlicer's: heatshrink 12/4 and MeatPack); default: the input's format, recognised by content")
         ("method", po::value<std::string>()->default_value("scaffold"),
          "scaffold: bridges and pillars (Dumas et al. 2014); pillars: vertical pillars only; "
          "none: pass the file through unchanged")
@@ -113,6 +118,13 @@ int main(int argc, char** argv) {
     for (const char* key : {"report", "dump-points", "dump-layers", "preview"})
         if (vm.count(key)) req.files[key] = vm[key].as<std::string>();
     req.overrides["--method"] = vm["method"].as<std::string>();
+    if (vm.count("output-format")) {
+        req.output_format = vm["output-format"].as<std::string>();
+        if (req.output_format != "ascii" && req.output_format != "binary") {
+            logger->error("--output-format must be ascii or binary, got '{}' (see --help)", req.output_format);
+            return 2;
+        }
+    }
     for (const auto& o : detect.options()) {
         const std::string& n = o->long_name();
         if (vm.count(n)) req.overrides["--" + n] = vm[n].as<std::string>();

@@ -5,6 +5,7 @@
 // Sizes matter here: a 500 MB file has some 15 million lines and moves.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@
 #include "gcode/text.hpp"
 
 namespace scaffold::gcode {
+
+namespace bgcode {
+struct Layout;
+}
 
 enum class Dialect : std::uint8_t { Unknown, PrusaSlicer, SuperSlicer, OrcaSlicer, Slic3r, Cura };
 const char* dialect_name(Dialect d);
@@ -64,6 +69,9 @@ struct Program {
     bool saw_relative_e = false;                 // M83 present
     bool relative_e_at_start = false;            // no M82/M83, but E reads as relative
     bool saw_arcs = false;
+    // Set when the input was binary G-code: `text` is its ASCII decoding and
+    // this says how to write it back (gcode/bgcode.hpp).
+    std::shared_ptr<const bgcode::Layout> binary;
 
     std::string_view line_text(std::size_t i) const {
         return std::string_view(text.data() + lines[i].offset, lines[i].length);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "gcode/bgcode.hpp"
 #include "gcode/error.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
@@ -198,12 +199,16 @@ namespace {
 // Lines and moves in one pass. On a mapped file the bytes behind the pass
 // are released as it goes, so the text is never resident as a whole.
 Program parse_text(Text text, std::string path, bool relative_e = false) {
+    if (bgcode::is_binary(text)) {
+        bgcode::Decoded d = bgcode::decode(text, path);
+        Program p = parse_text(Text(std::move(d.ascii)), std::move(path));
+        p.binary = std::make_shared<const bgcode::Layout>(std::move(d.layout));
+        return p;
+    }
     Program p;
     p.path = std::move(path);
     p.text = std::move(text);
     const Text& t = p.text;
-    if (t.size() >= 4 && std::memcmp(t.data(), "GCDE", 4) == 0)
-        throw Error(p.path, 0, "binary G-code (.bgcode) is not supported; export plain text G-code from the slicer");
     if (t.empty()) throw Error(p.path, 0, "the file is empty");
     if (t.size() > kMaxFileSize) throw Error(p.path, 0, "the file is too large (over 1 TB)");
     std::size_t approx = t.size() / 24 + 16;

@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <optional>
 
+#include "gcode/bgcode.hpp"
 #include "gcode/error.hpp"
 
 namespace scaffold::gcode {
@@ -80,9 +82,32 @@ bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
     return true;
 }
 
-void write_output(const std::string& path, const Program& program, std::vector<Edit> edits) {
+namespace {
+
+// Binary output, made in memory before any file is touched; nothing for text.
+std::optional<std::string> binary_output(const Program& p, std::vector<Edit>& edits, OutputFormat format) {
+    if (format == OutputFormat::Ascii || (format == OutputFormat::SameAsInput && !p.binary)) return std::nullopt;
+    if (p.binary && edits.empty()) return std::string(std::string_view(p.binary->original));
+    if (p.binary) return bgcode::encode_edited(p, std::move(edits));
+    char* buf = nullptr;
+    std::size_t len = 0;
+    std::FILE* f = open_memstream(&buf, &len);
+    if (!f) throw Error(p.path, 0, "out of memory");
+    bool ok = write_edited(f, p, std::move(edits));
+    std::fclose(f);
+    std::string text(buf, len);
+    std::free(buf);
+    if (!ok) throw Error(p.path, 0, "could not render the G-code");
+    return bgcode::encode_ascii(text, bgcode::Settings{});
+}
+
+}  // namespace
+
+void write_output(const std::string& path, const Program& program, std::vector<Edit> edits, OutputFormat format) {
+    std::optional<std::string> binary = binary_output(program, edits, format);
+    auto emit = [&](std::FILE* out) { return binary ? put(out, *binary) : write_edited(out, program, std::move(edits)); };
     if (path == "-") {
-        if (!write_edited(stdout, program, std::move(edits)) || std::fflush(stdout) != 0)
+        if (!emit(stdout) || std::fflush(stdout) != 0)
             throw Error("<stdout>", 0, std::string("write failed: ") + std::strerror(errno));
         return;
     }
@@ -105,7 +130,7 @@ void write_output(const std::string& path, const Program& program, std::vector<E
     }
     // A test hook to prove that a failed write leaves the target untouched.
     bool fail = std::getenv("SCAFFOLD_TEST_FAIL_WRITE") != nullptr;
-    bool ok = !fail && write_edited(out, program, std::move(edits));
+    bool ok = !fail && emit(out);
     ok = ok && std::fflush(out) == 0 && ::fsync(fd) == 0;
     int err = fail ? EIO : errno;
     if (std::fclose(out) != 0 && ok) { ok = false; err = errno; }

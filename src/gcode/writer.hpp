@@ -25,8 +25,12 @@ struct Edit {
 // Returns false if the stream reported an error.
 bool write_edited(std::FILE* out, const Program& program, std::vector<Edit> edits);
 
+enum class OutputFormat : std::uint8_t { SameAsInput, Ascii, Binary };
+
 // Writes to `path` atomically ("-" writes to stdout). Throws scaffold::Error.
-void write_output(const std::string& path, const Program& program, std::vector<Edit> edits);
+// Binary G-code keeps a binary input's settings; unchanged, its bytes.
+void write_output(const std::string& path, const Program& program, std::vector<Edit> edits,
+                  OutputFormat format = OutputFormat::SameAsInput);
 
 // A side file (report, picture, dump): written directly, not atomically.
 // Throws scaffold::Error if it cannot be written.

@@ -281,8 +281,6 @@ TEST(Dialects, RelativeEWithoutM83) {
         EXPECT_NEAR(a.program.moves[i].e, b.program.moves[i].e, 1e-5) << i;
     }
 }
-    EXPECT_FALSE(parse(abs_g.str()).program.relative_e_at_start);
-}
 
 // A file with no comments at all (no roles, no layer comments, no config)
 // and one with thumbnails (long base64 comment lines) before the header.
