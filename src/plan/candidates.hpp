@@ -51,6 +51,9 @@ struct ModelView {
     // Whether a bridge end at (x, y, z) can be held at all (a pillar fits
     // under it); empty: always.
     std::function<bool(double x, double y, double z)> end_stands;
+    // The disc touches the model on the first layer above z (the layer a
+    // support point's tip holds); empty: always.
+    std::function<bool(double z, double x, double y, double r)> touches_above;
 
     // Largest layer top <= z (z itself without layers); < 0 when none.
     double snap_down(double z) const;

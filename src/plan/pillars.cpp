@@ -240,7 +240,8 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     }
     // The point itself first, then rings around it, in a fixed order.
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
-    static constexpr std::array<double, 7> kRings{0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0};
+    static constexpr std::array<double, 9> kRings{0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0};
+    bool under_sheet = true;
     auto search = [&](const Column& shape) -> std::optional<std::vector<Column>> {
         for (double d : kRings) {
             if (top == Top::Bridge && d > 0) break;  // a bridge end stays where the bridge is
@@ -250,6 +251,12 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 Column c = shape;
                 c.x0 = c.x1 = x + d * std::cos(a);
                 c.y0 = c.y1 = y + d * std::sin(a);
+                // METHOD's rule (c): a tip holds the sheet that rests on it.
+                // Away from the point, the first pass takes only places where
+                // the tip lies under the overhanging layer's own material.
+                if (under_sheet && top == Top::Contact && d > 0 &&
+                    obs.disc_clear(overhang_layer, c.x1, c.y1, s.tip_radius + s.resolution))
+                    continue;
                 // Leaning towards a trunk can lead into the model further
                 // down: then the plain way down, without trunks.
                 const Column start = c;
@@ -268,18 +275,25 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         }
         return std::nullopt;
     };
-    if (auto chain = search(proto)) return chain;
-    // A short, thin pillar lands on a small or sloping top of the model (an
-    // ear over a head) and fits narrow gaps where the normal one does not.
-    if (top == Top::Contact && !s.buildplate_only) {
-        Column thin = proto;
-        thin.radius = std::max(s.tip_radius, s.pillar_radius * kThinFactor);
-        if (thin.radius < proto.radius)
-            if (auto chain = search(thin)) return chain;
-        // Last, the thinnest column the tip allows, in a slot beside a wall.
-        Column thinnest = proto;
-        thinnest.radius = s.tip_radius;
-        if (thinnest.radius < thin.radius) return search(thinnest);
+    // Under the sheet first; then anywhere within reach of the point.
+    for (bool pass : {true, false}) {
+        under_sheet = pass;
+        if (auto chain = search(proto)) return chain;
+        // A short, thin pillar lands on a small or sloping top of the model
+        // (an ear over a head) and fits narrow gaps where the normal one
+        // does not; last, the thinnest column the tip allows, in a slot
+        // beside a wall.
+        if (top == Top::Contact && !s.buildplate_only) {
+            Column thin = proto;
+            thin.radius = std::max(s.tip_radius, s.pillar_radius * kThinFactor);
+            if (thin.radius < proto.radius)
+                if (auto chain = search(thin)) return chain;
+            Column thinnest = proto;
+            thinnest.radius = s.tip_radius;
+            if (thinnest.radius < thin.radius)
+                if (auto chain = search(thinnest)) return chain;
+        }
+        if (top != Top::Contact) break;
     }
     return std::nullopt;
 }

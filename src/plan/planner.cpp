@@ -49,14 +49,18 @@ std::optional<Column> connector_to(const Candidate& b, const Active& a, double t
 
 // The connector to the point itself or, for a support point whose straight
 // connector is blocked, to a tip up to 1.5 mm away (the tip still holds the
-// point: its radius is 3.5 mm). A bridge end must be met exactly.
+// point: its radius is 3.5 mm). A bridge end must be met exactly. METHOD's
+// rule (c): a tip holds only the sheet resting on it, so a tip away from the
+// point must still lie under the overhanging layer's material; where none
+// does, the bridge does not carry the point (a pillar may still reach it).
 std::optional<Column> connector(const Candidate& b, const Active& a, const ModelView& m, const Settings& s) {
     if (auto c = connector_to(b, a, a.x, a.y, m, s)) return c;
     if (a.point < 0 || !m.disc_clear) return std::nullopt;
-    for (double d : {0.5, 1.0, 1.5})
+    for (double d : {0.25, 0.5, 0.75, 1.0, 1.5})
         for (int k = 0; k < 8; ++k) {
-            double ang = k * std::numbers::pi / 4;
-            if (auto c = connector_to(b, a, a.x + d * std::cos(ang), a.y + d * std::sin(ang), m, s)) return c;
+            const double ang = k * std::numbers::pi / 4, x = a.x + d * std::cos(ang), y = a.y + d * std::sin(ang);
+            if (m.touches_above && !m.touches_above(a.z, x, y, s.tip_radius + s.resolution)) continue;
+            if (auto c = connector_to(b, a, x, y, m, s)) return c;
         }
     return std::nullopt;
 }
@@ -184,6 +188,10 @@ ModelView model_view(const Obstacles& obs) {
         for (int l : index->at(z))
             if (!obs.disc_clear(l, x, y, r)) return false;
         return true;
+    };
+    v.touches_above = [&obs, index](double z, double x, double y, double r) {
+        const int l = index->above(z);
+        return l >= 0 && !obs.disc_clear(l, x, y, r);
     };
     v.model_top_below = [&obs, index](double z, double x, double y, double r) {
         // model_below looks under a layer: ask from the layer above the top.
