@@ -67,19 +67,25 @@ std::string tower(const std::string& preamble_extra, bool fw, double lift) {
     return out;
 }
 
-void check_round(const std::string& text, const char* what) {
-    SCOPED_TRACE(what);
-    gcode::Program in = gcode::parse(text, "in");
-    Settings s = build_settings(in, {}, {});
-    layers::LayerStack stack = layers::build_layers(in, s);
+// One pillar beside the tower, from the bed to z 1.0.
+plan::Scaffold one_pillar(double raft_size) {
     plan::Scaffold sc;
     plan::Column c;
     c.x0 = c.x1 = 130;
     c.y0 = c.y1 = 105;
     c.z0 = 0;
     c.z1 = 1.0;
-    c.raft_size = 5;
+    c.raft_size = raft_size;
     sc.columns.push_back(c);
+    return sc;
+}
+
+void check_round(const std::string& text, const char* what) {
+    SCOPED_TRACE(what);
+    gcode::Program in = gcode::parse(text, "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    const plan::Scaffold sc = one_pillar(5);
     auto paths = toolpath::make_paths(sc, stack, s);
     ASSERT_EQ(paths.layers.size(), 5u);  // layers at z 0.2 .. 1.0
     auto res = splice::splice(in, stack, paths, s);
@@ -148,13 +154,7 @@ TEST(Splice, NeverInsideAnObjectsLabelBlock) {
         gcode::Program in = gcode::parse(g.str(), "in");
         Settings s = build_settings(in, {}, {});
         layers::LayerStack stack = layers::build_layers(in, s);
-        plan::Scaffold sc;
-        plan::Column c;
-        c.x0 = c.x1 = 130;
-        c.y0 = c.y1 = 105;
-        c.z0 = 0;
-        c.z1 = 1.0;
-        sc.columns.push_back(c);
+        const plan::Scaffold sc = one_pillar(0);
         auto paths = toolpath::make_paths(sc, stack, s);
         auto res = splice::splice(in, stack, paths, s);
         EXPECT_EQ(res.blocks_split, 0u);
