@@ -25,7 +25,8 @@ add_library(Boost::boost INTERFACE IMPORTED)
 target_include_directories(Boost::boost SYSTEM INTERFACE
   "${SCAFFOLD_BOOST_SOURCE_DIR}/libs/program_options/include" "${host_include}")
 # No auto-linking pragmas (MSVC only anyway), and a static library.
-target_compile_definitions(Boost::boost INTERFACE BOOST_ALL_NO_LIB BOOST_PROGRAM_OPTIONS_STATIC_LINK)
+target_compile_definitions(Boost::boost INTERFACE BOOST_ALL_NO_LIB BOOST_PROGRAM_OPTIONS_STATIC_LINK
+  BOOST_ALLOW_DEPRECATED_HEADERS)  # quiet: Boost.Math 1.74 includes its own deprecated headers
 
 file(GLOB boost_po_sources "${SCAFFOLD_BOOST_SOURCE_DIR}/libs/program_options/src/*.cpp")
 add_library(boost_program_options STATIC ${boost_po_sources})
