@@ -39,3 +39,7 @@ add_library(Boost::program_options ALIAS boost_program_options)
 add_library(spdlog::spdlog INTERFACE IMPORTED)
 target_include_directories(spdlog::spdlog SYSTEM INTERFACE "${host_include}")
 target_compile_definitions(spdlog::spdlog INTERFACE SPDLOG_FMT_EXTERNAL FMT_HEADER_ONLY)
+
+# Both programs carry cmake/windows.manifest: UTF-8 as their code page.
+enable_language(RC)
+set(SCAFFOLD_WINDOWS_RESOURCES "${CMAKE_CURRENT_LIST_DIR}/windows-manifest.rc")

@@ -4,9 +4,9 @@
 # when it is there, shared/corpus), rewritten in place as the slicer hook
 # does through a Windows path with spaces and backslashes (default method)
 # and through stdin/stdout (pillars); on CRLF files; in place on another
-# drive letter; with SLIC3R_* settings from the environment; --help and
-# --version; scaffold-check's report. A failed write leaves the file as it
-# was, and a missing file gives the Linux error.
+# drive letter and with a non-ASCII name; with SLIC3R_* settings from the
+# environment; --help and --version; scaffold-check's report. A failed write
+# leaves the file as it was, and a missing file gives the Linux error.
 # Skips (exit 77) when wine64 or the Windows build is absent; tools/test
 # builds both when CI is set or SCAFFOLD_WINDOWS=1.
 set -uo pipefail
@@ -94,6 +94,13 @@ win 'S:\sub dir\part.gcode' || bad "drive S: in place: exit $?"
 cmp -s "$tmp/lin.gcode" "$tmp/drive/sub dir/part.gcode" || bad "drive S: in place: differs from Linux"
 [ "$(ls -A "$tmp/drive/sub dir")" = part.gcode ] || bad "drive S: left $(ls -A "$tmp/drive/sub dir")"
 
+# Names outside any one ANSI code page (the programs' manifest makes UTF-8
+# their code page; Wine reads the Unix arguments as UTF-8 with this locale).
+mkdir -p "$tmp/drive/Drucke äöü"
+cp "$tmp/in.gcode" "$tmp/drive/Drucke äöü/日本 modèle.gcode"
+LC_ALL=C.UTF-8 win 'S:\Drucke äöü\日本 modèle.gcode' || bad "non-ASCII name in place: exit $?"
+cmp -s "$tmp/lin.gcode" "$tmp/drive/Drucke äöü/日本 modèle.gcode" || bad "non-ASCII name in place: differs from Linux"
+
 # scaffold-check's report (relative names: the report names its file).
 (cd "$tmp" && "$build/scaffold-check" lin.gcode --original in.gcode > check.lin; echo "exit $?" >> check.lin
  "$wine" "$winbuild/scaffold-check.exe" lin.gcode --original in.gcode > check.win; echo "exit $?" >> check.win)
@@ -112,4 +119,4 @@ win 'S:\sub dir\nope.gcode' 2>"$tmp/err"; rc=$?
 grep -q 'cannot open for reading: No such file or directory' "$tmp/err" || bad "missing file: message: $(cat "$tmp/err")"
 
 [ "$fail" -eq 0 ] || exit 1
-echo "Windows build under Wine: $n corpus files x 2 methods, $crlf CRLF files, drive S:, environment, --help, scaffold-check: identical to Linux"
+echo "Windows build under Wine: $n corpus files x 2 methods, $crlf CRLF files, drive S:, non-ASCII name, environment, --help, scaffold-check: identical to Linux"
