@@ -1,5 +1,9 @@
 // scaffold-check: judges whether a G-code file prints, from the G-code alone.
 #include <boost/program_options.hpp>
+#ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
+#endif
 #include <cstdio>
 #include <iostream>
 
@@ -10,6 +14,9 @@
 namespace po = boost::program_options;
 
 int main(int argc, char** argv) {
+#ifdef _WIN32
+    (void)_setmode(_fileno(stdout), _O_BINARY);  // '\n' stays '\n': the same bytes as on Linux
+#endif
     scaffold::check::CheckOptions o;
     po::options_description opts(
         "Usage: scaffold-check [options] FILE.gcode\n\n"

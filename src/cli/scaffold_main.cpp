@@ -4,6 +4,10 @@
 #include <spdlog/spdlog.h>
 
 #include <boost/program_options.hpp>
+#ifdef _WIN32
+#include <fcntl.h>
+#include <io.h>
+#endif
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -26,6 +30,9 @@ std::string num(double v) {
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef _WIN32
+    (void)_setmode(_fileno(stdout), _O_BINARY);  // '\n' stays '\n': the same bytes as on Linux
+#endif
     auto logger = spdlog::stderr_color_mt("scaffold");
     logger->set_pattern("scaffold: %^%l%$: %v");
     logger->set_level(spdlog::level::info);

@@ -1,9 +1,13 @@
 #include "gcode/text.hpp"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
+#ifdef _WIN32
+#include <io.h>
+#else
+#include <sys/mman.h>
 #include <unistd.h>
+#endif
 
 #include <cerrno>
 #include <cstring>
@@ -20,7 +24,9 @@ struct Text::Storage {
     Storage(const Storage&) = delete;
     Storage& operator=(const Storage&) = delete;
     ~Storage() {
+#ifndef _WIN32
         if (map) ::munmap(map, map_size);
+#endif
     }
 };
 
@@ -35,11 +41,16 @@ bool Text::mapped() const { return storage_ && storage_->map; }
 
 namespace {
 
-std::string read_all(int fd, const std::string& name) {
+std::string read_all(int fd, const std::string& name, std::size_t expected = 0) {
     std::string s;
+    s.reserve(expected);
     char buf[1 << 16];
     for (;;) {
+#ifdef _WIN32
+        int n = ::_read(fd, buf, sizeof buf);
+#else
         ssize_t n = ::read(fd, buf, sizeof buf);
+#endif
         if (n == 0) return s;
         if (n < 0) {
             if (errno == EINTR) continue;
@@ -51,6 +62,31 @@ std::string read_all(int fd, const std::string& name) {
 
 }  // namespace
 
+#ifdef _WIN32
+// Windows cannot rename over a file that is mapped, and the in-place rewrite
+// (the slicer hook) renames over the input, so there the file is read whole,
+// in binary mode (a CRLF file's bytes stay as they are).
+Text Text::load(const std::string& path) {
+    if (path == "-") {
+        (void)::_setmode(::_fileno(stdin), _O_BINARY);
+        return Text(read_all(::_fileno(stdin), "<stdin>"));
+    }
+    int fd = ::_open(path.c_str(), _O_RDONLY | _O_BINARY | _O_NOINHERIT);
+    if (fd < 0) throw Error(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
+    struct _stat64 sb{};
+    std::size_t size = ::_fstat64(fd, &sb) == 0 && sb.st_size > 0 ? static_cast<std::size_t>(sb.st_size) : 0;
+    try {
+        Text t(read_all(fd, path, size + 1));  // +1: the read that finds the end
+        ::_close(fd);
+        return t;
+    } catch (...) {
+        ::_close(fd);
+        throw;
+    }
+}
+
+void Text::release(std::uint64_t, std::uint64_t) const {}
+#else
 Text Text::load(const std::string& path) {
     if (path == "-") return Text(read_all(STDIN_FILENO, "<stdin>"));
     int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -92,5 +128,6 @@ void Text::release(std::uint64_t begin, std::uint64_t end) const {
     // pages; reading them again refaults the file's bytes.
     (void)::madvise(static_cast<char*>(storage_->map) + from, end - from, MADV_DONTNEED);
 }
+#endif
 
 }  // namespace scaffold::gcode

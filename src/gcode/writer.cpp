@@ -2,7 +2,17 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#ifdef _WIN32
+#include <io.h>
+#include <process.h>
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#define WIN32_LEAN_AND_MEAN
+#include <windows.h>
+#else
 #include <unistd.h>
+#endif
 
 #include <algorithm>
 #include <cerrno>
@@ -50,6 +60,38 @@ bool copy_text(std::FILE* out, const Text& text, std::uint64_t from, std::uint64
     }
     return true;
 }
+
+#ifdef _WIN32
+// The POSIX calls write_output makes, in their Windows form. A file is
+// replaced with MoveFileEx (rename() refuses an existing target there).
+int open_new(const std::string& tmp) {
+    return ::_open(tmp.c_str(), _O_WRONLY | _O_CREAT | _O_EXCL | _O_BINARY | _O_NOINHERIT, _S_IREAD | _S_IWRITE);
+}
+void keep_mode(const std::string&, int) {}  // Windows has no mode bits to keep
+int sync_fd(int fd) { return ::_commit(fd); }
+int process_id() { return ::_getpid(); }
+std::string replace_file(const std::string& tmp, const std::string& path) {
+    if (::MoveFileExA(tmp.c_str(), path.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) return {};
+    char msg[512];
+    DWORD n = ::FormatMessageA(FORMAT_MESSAGE_FROM_SYSTEM | FORMAT_MESSAGE_IGNORE_INSERTS, nullptr, ::GetLastError(), 0,
+                               msg, sizeof msg, nullptr);
+    while (n > 0 && (msg[n - 1] == '\r' || msg[n - 1] == '\n' || msg[n - 1] == '.')) --n;
+    return n > 0 ? std::string(msg, n) : "error " + std::to_string(::GetLastError());
+}
+constexpr const char* kDirSeparators = "/\\:";
+#else
+int open_new(const std::string& tmp) { return ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644); }
+void keep_mode(const std::string& path, int fd) {
+    struct stat st{};
+    if (::stat(path.c_str(), &st) == 0) (void)::fchmod(fd, st.st_mode & 07777);
+}
+int sync_fd(int fd) { return ::fsync(fd); }
+int process_id() { return ::getpid(); }
+std::string replace_file(const std::string& tmp, const std::string& path) {
+    return ::rename(tmp.c_str(), path.c_str()) == 0 ? std::string() : std::strerror(errno);
+}
+constexpr const char* kDirSeparators = "/";
+#endif
 
 }  // namespace
 
@@ -107,42 +149,41 @@ void write_output(const std::string& path, const Program& program, std::vector<E
     std::optional<std::string> binary = binary_output(program, edits, format);
     auto emit = [&](std::FILE* out) { return binary ? put(out, *binary) : write_edited(out, program, std::move(edits)); };
     if (path == "-") {
+#ifdef _WIN32
+        (void)::_setmode(::_fileno(stdout), _O_BINARY);  // no '\n' -> CRLF translation
+#endif
         if (!emit(stdout) || std::fflush(stdout) != 0)
             throw Error("<stdout>", 0, std::string("write failed: ") + std::strerror(errno));
         return;
     }
-    std::string dir = ".", base = path;
-    if (std::size_t slash = path.rfind('/'); slash != std::string::npos) {
-        dir = slash == 0 ? "/" : path.substr(0, slash);
-        base = path.substr(slash + 1);
-    }
-    std::string tmp = dir + "/." + base + ".scaffold-" + std::to_string(::getpid()) + ".tmp";
-    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    // The temporary file goes beside the target (same directory, same drive).
+    std::size_t cut = path.find_last_of(kDirSeparators);
+    cut = cut == std::string::npos ? 0 : cut + 1;
+    std::string tmp = path.substr(0, cut) + "." + path.substr(cut) + ".scaffold-" + std::to_string(process_id()) + ".tmp";
+    int fd = open_new(tmp);
     if (fd < 0) throw Error(path, 0, std::string("cannot create the output file: ") + std::strerror(errno));
-    struct stat st{};
-    if (::stat(path.c_str(), &st) == 0) (void)::fchmod(fd, st.st_mode & 07777);  // keep the original's mode
+    keep_mode(path, fd);  // keep the original's mode
     std::FILE* out = ::fdopen(fd, "wb");
     if (!out) {
         int err = errno;
         ::close(fd);
-        ::unlink(tmp.c_str());
+        std::remove(tmp.c_str());
         throw Error(path, 0, std::string("cannot write the output file: ") + std::strerror(err));
     }
     // A test hook to prove that a failed write leaves the target untouched.
     bool fail = std::getenv("SCAFFOLD_TEST_FAIL_WRITE") != nullptr;
     bool ok = !fail && emit(out);
-    ok = ok && std::fflush(out) == 0 && ::fsync(fd) == 0;
+    ok = ok && std::fflush(out) == 0 && sync_fd(fd) == 0;
     int err = fail ? EIO : errno;
     if (std::fclose(out) != 0 && ok) { ok = false; err = errno; }
     if (!ok) {
-        ::unlink(tmp.c_str());
+        std::remove(tmp.c_str());
         throw Error(path, 0, std::string("writing the output failed (") + std::strerror(err) +
                                  "); the original file is unchanged");
     }
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        err = errno;
-        ::unlink(tmp.c_str());
-        throw Error(path, 0, std::string("cannot replace the output file: ") + std::strerror(err));
+    if (std::string why = replace_file(tmp, path); !why.empty()) {
+        std::remove(tmp.c_str());
+        throw Error(path, 0, "cannot replace the output file: " + why);
     }
 }
 
