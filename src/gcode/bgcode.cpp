@@ -420,15 +420,7 @@ std::string encode_edited(const Program& program, std::vector<Edit> edits) {
         else if (!in_meta(e.line) || e.text.find('\n') != std::string::npos)
             throw Error(program.path, e.line + 1, "this line of a binary file's metadata cannot be changed");
     }
-    char* buf = nullptr;
-    std::size_t len = 0;
-    std::FILE* f = open_memstream(&buf, &len);
-    if (!f) throw Error(program.path, 0, "out of memory");
-    bool ok = write_edited(f, program, std::move(edits));
-    std::fclose(f);
-    std::string text(buf, len);
-    std::free(buf);
-    if (!ok) throw Error(program.path, 0, "could not render the edited G-code");
+    const std::string text = render_edited(program, std::move(edits));
 
     // Header and footer keep their line counts: only their values changed.
     std::vector<std::string_view> lines = split_lines(text);

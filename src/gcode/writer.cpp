@@ -33,9 +33,16 @@ bool uses_crlf(const Program& p) {
            p.text[p.lines[0].offset + p.lines[0].length] == '\r';
 }
 
+// Output goes to a stream or, for binary G-code made in memory, a string
+// (open_memstream is POSIX only: no MinGW).
 bool put(std::FILE* out, std::string_view s) { return s.empty() || std::fwrite(s.data(), 1, s.size(), out) == s.size(); }
+bool put(std::string* out, std::string_view s) {
+    out->append(s);
+    return true;
+}
 
-bool put_block(std::FILE* out, const std::string& text, bool crlf) {
+template <class Out>
+bool put_block(Out out, const std::string& text, bool crlf) {
     if (!crlf) return put(out, text);
     std::size_t pos = 0;
     while (pos < text.size()) {
@@ -49,7 +56,8 @@ bool put_block(std::FILE* out, const std::string& text, bool crlf) {
 
 // Copies text[from, to) in pieces, releasing each piece of a mapped input
 // once written, so writing a huge file keeps only a piece of it resident.
-bool copy_text(std::FILE* out, const Text& text, std::uint64_t from, std::uint64_t to) {
+template <class Out>
+bool copy_text(Out out, const Text& text, std::uint64_t from, std::uint64_t to) {
     constexpr std::uint64_t kPiece = std::uint64_t{8} << 20;
     std::string_view all(text);
     while (from < to) {
@@ -95,7 +103,10 @@ constexpr const char* kDirSeparators = "/";
 
 }  // namespace
 
-bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
+namespace {
+
+template <class Out>
+bool write_edited_to(Out out, const Program& p, std::vector<Edit> edits) {
     std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) {
         return a.line != b.line ? a.line < b.line : (!a.replace && b.replace);
     });
@@ -124,6 +135,17 @@ bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) {
     return true;
 }
 
+}  // namespace
+
+bool write_edited(std::FILE* out, const Program& p, std::vector<Edit> edits) { return write_edited_to(out, p, std::move(edits)); }
+
+std::string render_edited(const Program& p, std::vector<Edit> edits) {
+    std::string s;
+    s.reserve(p.text.size() + 4096);
+    write_edited_to(&s, p, std::move(edits));
+    return s;
+}
+
 namespace {
 
 // Binary output, made in memory before any file is touched; nothing for text.
@@ -131,16 +153,7 @@ std::optional<std::string> binary_output(const Program& p, std::vector<Edit>& ed
     if (format == OutputFormat::Ascii || (format == OutputFormat::SameAsInput && !p.binary)) return std::nullopt;
     if (p.binary && edits.empty()) return std::string(std::string_view(p.binary->original));
     if (p.binary) return bgcode::encode_edited(p, std::move(edits));
-    char* buf = nullptr;
-    std::size_t len = 0;
-    std::FILE* f = open_memstream(&buf, &len);
-    if (!f) throw Error(p.path, 0, "out of memory");
-    bool ok = write_edited(f, p, std::move(edits));
-    std::fclose(f);
-    std::string text(buf, len);
-    std::free(buf);
-    if (!ok) throw Error(p.path, 0, "could not render the G-code");
-    return bgcode::encode_ascii(text, bgcode::Settings{});
+    return bgcode::encode_ascii(render_edited(p, std::move(edits)), bgcode::Settings{});
 }
 
 }  // namespace

@@ -24,6 +24,8 @@ struct Edit {
 // Streams the program with edits applied (edits sorted by line, stable).
 // Returns false if the stream reported an error.
 bool write_edited(std::FILE* out, const Program& program, std::vector<Edit> edits);
+// The same, into a string (binary output is made in memory).
+std::string render_edited(const Program& program, std::vector<Edit> edits);
 
 enum class OutputFormat : std::uint8_t { SameAsInput, Ascii, Binary };
 
