@@ -97,13 +97,17 @@ class ScaffoldSupports(Script):
         extra = self.getSettingValueByKey("extra").split()
         fd, path = tempfile.mkstemp(suffix=".gcode")
         try:
-            with os.fdopen(fd, "w", newline="") as f:
+            # UTF-8 whatever the system's code page (Windows): G-code may
+            # carry any character in its comments.
+            with os.fdopen(fd, "w", newline="", encoding="utf-8", errors="surrogateescape") as f:
                 f.write("".join(data))
+            # No console window flashing up on Windows.
+            flags = getattr(subprocess, "CREATE_NO_WINDOW", 0)
             result = subprocess.run(command_line(binary, method, extra, cura_settings(), path),
-                                    capture_output=True, text=True)
+                                    capture_output=True, text=True, creationflags=flags)
             if result.returncode != 0:
                 raise RuntimeError("scaffold failed: " + result.stderr.strip())
-            with open(path, newline="") as f:
+            with open(path, newline="", encoding="utf-8", errors="surrogateescape") as f:
                 text = f.read()
         finally:
             os.unlink(path)
