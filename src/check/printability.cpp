@@ -9,6 +9,7 @@
 #include <set>
 #include <numbers>
 
+#include "gcode/blocks.hpp"
 #include "gcode/error.hpp"
 #include "gcode/lexer.hpp"
 #include "layers/layer_stack.hpp"
@@ -356,8 +357,16 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         for (const Problem& q : extrusion_problems(*original, settings, [](const gcode::Move&) { return false; }).problems)
             if (q.line >= ofirst) own.insert({q.line, static_cast<int>(q.kind)});
     }
+    // A tool change's purge (Bambu's M620..M621 flush, PrusaSlicer's wipe
+    // tower change) is the slicer's own, like the start code's.
+    std::vector<char> purge(out.lines.size(), 0);
+    for (std::size_t i = 0, open = 0; i < out.lines.size(); ++i) {
+        const gcode::BlockMarker m = gcode::block_marker(out.line_text(i));
+        if (m.kind == gcode::BlockKind::ToolChange) open = m.opens;
+        purge[i] = static_cast<char>(open || (m.kind == gcode::BlockKind::ToolChange && !m.opens));
+    }
     for (const Problem& q : ex.problems) {
-        if (q.line < first_layer_line) {
+        if (q.line < first_layer_line || purge[q.line]) {
             ++r.start_code_problems;
             if (r.start_code_notes.size() < 5) r.start_code_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
             continue;
@@ -697,7 +706,7 @@ std::string report_text(const CheckReport& r) {
          std::to_string(r.outside_bed) + " outside the bed\n";
     for (const auto& n : r.extrusion_notes) o += "    " + n + "\n";
     if (r.start_code_problems) {
-        o += "  the slicer's start code (purge and prime before the first layer; not a failure): " +
+        o += "  the slicer's start code and tool-change purges (not a failure): " +
              std::to_string(r.start_code_problems) + " extrusion notes\n";
         for (const auto& n : r.start_code_notes) o += "    " + n + "\n";
     }

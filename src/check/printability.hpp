@@ -61,8 +61,8 @@ struct CheckReport {
     int outside_bed = 0;           // extrusions off the bed
     std::vector<std::string> extrusion_notes;  // first few, with line numbers
     // Reported, not failures: the slicer's start code (purge and prime
-    // before the first layer), and with --original what the original did
-    // itself on lines the edit left alone.
+    // before the first layer) and tool-change purges, and with --original
+    // what the original did itself on lines the edit left alone.
     int start_code_problems = 0;
     std::vector<std::string> start_code_notes;
     int original_problems = 0;

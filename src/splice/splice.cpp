@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "gcode/blocks.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
 
@@ -191,23 +192,13 @@ private:
     std::string out_;
 };
 
-// Blocks that support must never be spliced into: an object's labelled
-// block (cancelling the object in the printer drops it, and with it the
-// support another object stands on) and a tool change with its purge.
+// Support is never spliced into an object's labelled block (cancelling
+// the object in the printer would drop it, and with it the support another
+// object stands on) or a tool change with its purge: gcode/blocks.hpp.
 // +1 opens a block, -1 closes it, 0 neither.
 int block_marker(std::string_view t) {
-    auto starts = [&](std::string_view p) { return t.substr(0, p.size()) == p; };
-    while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
-    if (starts("EXCLUDE_OBJECT_START")) return 1;
-    if (starts("EXCLUDE_OBJECT_END")) return -1;
-    if (starts("M486 S")) return t.substr(6, 2) == "-1" ? -1 : 1;
-    if (starts("M620 S")) return 1;
-    if (starts("M621 S")) return -1;
-    if (starts("; CP TOOLCHANGE START")) return 1;  // PrusaSlicer's wipe tower tool change
-    if (starts("; CP TOOLCHANGE END")) return -1;
-    if (starts("; start printing object") || starts(";start printing object")) return 1;
-    if (starts("; stop printing object") || starts(";stop printing object")) return -1;
-    return 0;
+    const gcode::BlockMarker m = gcode::block_marker(t);
+    return m.kind == gcode::BlockKind::None ? 0 : (m.opens ? 1 : -1);
 }
 
 // Where to insert a block meant for line `at`: before the labelled block

@@ -392,3 +392,17 @@ TEST(Check, TipHoldsOnlyTheSheetRestingOnIt) {
     ASSERT_FALSE(beside.worst_unheld.empty());
     EXPECT_NEAR(beside.worst_unheld[0].z, 2.2, 1e-6);
 }
+
+// A tool change's purge (Bambu's M620..M621 flush of the old filament) is
+// the slicer's own: reported apart, not failed.
+TEST(Check, ToolChangePurgeIsNoFailure) {
+    SynthGcode g = cube(5);
+    g.raw("M620 S1A");
+    g.raw("T1");
+    g.raw("G1 E500 F300 ; flush");
+    g.raw("M621 S1A");
+    auto r = run(g);
+    EXPECT_TRUE(r.ok()) << check::report_text(r);
+    EXPECT_EQ(r.start_code_problems, 1);
+    EXPECT_EQ(r.e_jumps, 0);
+}
