@@ -165,13 +165,9 @@ void run(const Request& req, spdlog::logger& log) {
     if (big || (settings.method == Method::Scaffold && points.points.size() >= 120))
         log.info("{} support points; planning...", points.points.size());
 
-    // Bed levelling baked into the file moves the model's Z with the bed's
-    // mesh; support at the layers' nominal heights would not follow it.
     if (stack.z_varies && !points.points.empty())
-        throw Error(program.path, 0, "Z varies within layers (bed levelling applied by the slicer) and " +
-                                         std::to_string(points.points.size()) +
-                                         " support points are needed: support cannot follow the bed mesh; "
-                                         "slice with levelling left to the printer");
+        log.info("bed levelling is baked into the file (Z follows the bed within each layer): the support follows the "
+                 "same mesh, as the model's own moves give it");
 
     auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
     const plan::Scaffold scaffold = settings.method == Method::Pillars

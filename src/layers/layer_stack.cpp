@@ -55,15 +55,86 @@ void stated_heights(const gcode::Program& program, LayerStack& stack) {
     }
 }
 
+// The mesh from every extrusion's end: its Z less its layer's nominal z,
+// averaged per cell; empty cells take their nearest filled neighbour's
+// value, ring by ring.
+BedMesh bed_mesh(const gcode::Program& program, const LayerStack& stack) {
+    BedMesh m;
+    const Bounds& b = stack.bounds;
+    if (b.empty()) return m;
+    m.x0 = b.min_x;
+    m.y0 = b.min_y;
+    m.nx = std::max(1, static_cast<int>(std::ceil((b.max_x - b.min_x) / m.cell)));
+    m.ny = std::max(1, static_cast<int>(std::ceil((b.max_y - b.min_y) / m.cell)));
+    const std::size_t n = static_cast<std::size_t>(m.nx) * m.ny;
+    std::vector<double> sum(n, 0.0);
+    std::vector<int> count(n, 0);
+    auto cell_of = [&](double x, double y) {
+        const int i = std::clamp(static_cast<int>((x - m.x0) / m.cell), 0, m.nx - 1);
+        const int j = std::clamp(static_cast<int>((y - m.y0) / m.cell), 0, m.ny - 1);
+        return static_cast<std::size_t>(j) * m.nx + i;
+    };
+    for (const Layer& L : stack.layers) {
+        if (L.purge) continue;
+        for (const Segment& s : L.segments) {
+            const std::size_t c = cell_of(s.x1, s.y1);
+            sum[c] += program.moves[s.move].z1 - L.z;
+            ++count[c];
+        }
+    }
+    m.offset.assign(n, 0.0);
+    std::vector<char> filled(n, 0);
+    std::size_t left = n;
+    for (std::size_t c = 0; c < n; ++c)
+        if (count[c]) { m.offset[c] = sum[c] / count[c]; filled[c] = 1; --left; }
+    if (left == n) return BedMesh{};
+    while (left > 0) {
+        std::vector<char> next = filled;
+        for (int j = 0; j < m.ny; ++j)
+            for (int i = 0; i < m.nx; ++i) {
+                const std::size_t c = static_cast<std::size_t>(j) * m.nx + i;
+                if (filled[c]) continue;
+                double s = 0;
+                int k = 0;
+                for (int dj = -1; dj <= 1; ++dj)
+                    for (int di = -1; di <= 1; ++di) {
+                        const int a = i + di, bb = j + dj;
+                        if (a < 0 || bb < 0 || a >= m.nx || bb >= m.ny) continue;
+                        const std::size_t d = static_cast<std::size_t>(bb) * m.nx + a;
+                        if (filled[d]) { s += m.offset[d]; ++k; }
+                    }
+                if (k) { m.offset[c] = s / k; next[c] = 1; --left; }
+            }
+        filled.swap(next);
+    }
+    return m;
+}
+
 }  // namespace
+
+double BedMesh::at(double x, double y) const {
+    if (empty()) return 0;
+    const double fx = std::clamp((x - x0) / cell - 0.5, 0.0, nx - 1.0), fy = std::clamp((y - y0) / cell - 0.5, 0.0, ny - 1.0);
+    const int i = std::min(static_cast<int>(fx), nx - 1), j = std::min(static_cast<int>(fy), ny - 1);
+    const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
+    const double tx = fx - i, ty = fy - j;
+    auto v = [&](int a, int b) { return offset[static_cast<std::size_t>(b) * nx + a]; };
+    return (v(i, j) * (1 - tx) + v(i1, j) * tx) * (1 - ty) + (v(i, j1) * (1 - tx) + v(i1, j1) * tx) * ty;
+}
 
 ZMotion z_motion(const gcode::Program& program) {
     ZMotion z;
     for (const gcode::Move& m : program.moves) {
         if (!extrudes(m)) continue;
         ++z.extrusions;
-        if (m.z1 > m.z0 + kZEps) ++z.rising;
-        else if (m.z1 < m.z0 - kZEps) ++z.falling;
+        if (m.z1 > m.z0 + kZEps) {
+            ++z.rising;
+            z.rise += m.z1 - m.z0;
+        } else if (m.z1 < m.z0 - kZEps) {
+            ++z.falling;
+        }
+        z.z_min = std::min(z.z_min, static_cast<double>(m.z1));
+        z.z_max = std::max(z.z_max, static_cast<double>(m.z1));
     }
     return z;
 }
@@ -188,6 +259,7 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
             b.max_y = std::max({b.max_y, s.y0 + r, s.y1 + r});
         }
     }
+    if (stack.z_varies) stack.mesh = bed_mesh(program, stack);
     return stack;
 }
 

@@ -40,14 +40,32 @@ struct Layer {
     std::vector<Segment> segments;
 };
 
-// How Z moves while extruding: a spiral vase rises and never falls, bed
-// levelling baked into the file (Z following the bed's mesh) does both.
+// How Z moves while extruding: a spiral vase rises and never falls, and
+// all its rising adds up to the print's height; bed levelling baked into
+// the file (Z following the bed's mesh) rises and falls, or rises over and
+// over on a tilted bed, far more than the print is high.
 struct ZMotion {
     std::size_t extrusions = 0, rising = 0, falling = 0;
-    bool spiral() const { return rising > 200 && rising * 4 > extrusions && falling * 20 < rising; }
+    double rise = 0;                      // mm risen while extruding, summed
+    double z_min = 1e300, z_max = -1e300;  // of the extrusions
+    bool spiral() const {
+        return rising > 200 && rising * 4 > extrusions && falling * 20 < rising && rise < 1.5 * (z_max - z_min) + 1;
+    }
     bool levelled() const { return !spiral() && rising + falling > 50 && (rising + falling) * 20 > extrusions; }
 };
 ZMotion z_motion(const gcode::Program& program);
+
+// Bed levelling baked into a file: the Z offset of the printed moves from
+// their layer's nominal height, as a function of XY (the bed's mesh), on a
+// coarse grid of cell averages. Support printed in such a file follows it.
+struct BedMesh {
+    double x0 = 0, y0 = 0, cell = 2.0;
+    int nx = 0, ny = 0;
+    std::vector<double> offset;  // nx * ny, every cell filled
+    bool empty() const { return offset.empty(); }
+    // Bilinear between cell centres, clamped at the edges.
+    double at(double x, double y) const;
+};
 
 struct LayerStack {
     std::vector<Layer> layers;  // in file order; z increases except for a purge
@@ -56,6 +74,7 @@ struct LayerStack {
     bool z_varies = false;      // Z changes within layers (bed levelling in the
                                 // file): layers come from the slicer's comments
                                 // and carry nominal heights
+    BedMesh mesh;               // the levelling, where z_varies
 };
 
 // Width of a bead from filament used, its length and layer height

@@ -43,11 +43,11 @@ const char* support_type(gcode::Dialect d) {
 class BlockWriter {
 public:
     BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
-                std::string_view restore_type, gcode::Dialect dialect)
+                std::string_view restore_type, gcode::Dialect dialect, const layers::BedMesh* mesh)
         // Retract the way the slicer did at this point: filament pulled back
         // by E is given back by E, whatever else the file does elsewhere.
         : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
-          restore_type_(restore_type), dialect_(dialect) {
+          restore_type_(restore_type), dialect_(dialect), mesh_(mesh) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
         e_ = saved.e;
@@ -150,7 +150,7 @@ private:
         const auto& a = p.points.front();
         double d = std::hypot(a.x - x_, a.y - y_);
         if (d > s_.retract_before_travel && p.retract) retract();
-        travel(a.x, a.y, layer_.z);
+        travel(a.x, a.y, z_at(a.x, a.y));
         unretract();
         int bridge_fan = static_cast<int>(std::lround(2.55 * s_.bridge_fan_percent));
         if (p.bridge && fan_ != bridge_fan) {
@@ -168,6 +168,10 @@ private:
             out_ += "G1";
             num(out_, 'X', b.x, 3);
             num(out_, 'Y', b.y, 3);
+            if (mesh_) {
+                z_ = z_at(b.x, b.y);
+                num(out_, 'Z', z_, 3);
+            }
             extrude_e(de);
             if (first) num(out_, 'F', feed, 0);
             out_ += "\n";
@@ -179,12 +183,17 @@ private:
         }
     }
 
+    // The layer's height where the nozzle is; with bed levelling baked into
+    // the file, the model's Z follows the bed's mesh and the support with it.
+    double z_at(double x, double y) const { return layer_.z + (mesh_ ? mesh_->at(x, y) : 0.0); }
+
     const gcode::MachineState& saved_;
     const Settings& s_;
     const layers::Layer& layer_;
     bool fw_;
     std::string_view restore_type_;
     gcode::Dialect dialect_;
+    const layers::BedMesh* mesh_;  // null without levelling in the file
     double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
     bool retracted_ = false, fan_changed_ = false;
     int fan_ = 0;
@@ -257,7 +266,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
         program.text.release(released, upto);
         released = upto;
-        BlockWriter w(st, settings, layer, fw, last_type, program.dialect);
+        BlockWriter w(st, settings, layer, fw, last_type, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh);
         gcode::Edit e;
         e.line = at;
         e.text = w.write(lp.paths);

@@ -296,3 +296,30 @@ TEST(Dialects, NoCommentsAndThumbnails) {
     EXPECT_EQ(t.stack.layers.size(), 6u);
     EXPECT_TRUE(t.stack.layers[0].on_bed);
 }
+
+// Bed levelling baked into the file: the mesh is read off the model's own
+// moves, and support spliced into such a file follows it.
+TEST(Dialects, SupportFollowsTheBedMeshOfALevelledFile) {
+    auto offset = [](double x, double y) { return 0.5 + 0.02 * (x - 100) - 0.01 * (y - 100); };
+    std::string s = "M82\nG92 E0\n";
+    double e = 0;
+    for (int l = 0; l < 8; ++l) {
+        s += "; LAYER:" + std::to_string(l) + "\n; LAYER_HEIGHT:0.2\n";
+        const double zn = 0.2 * (l + 1);
+        for (double y = 100; y <= 110; y += 0.5) {
+            const double xa = (static_cast<int>(y * 2) % 2) ? 140 : 100, xb = xa == 100 ? 140 : 100;
+            s += "G1 X" + std::to_string(xa) + " Y" + std::to_string(y) + " Z" + std::to_string(zn + offset(xa, y)) + " F6000\n";
+            for (int k = 1; k <= 8; ++k) {
+                const double x = xa + (xb - xa) * k / 8;
+                e += 5 * 0.033;
+                s += "G1 X" + std::to_string(x) + " Y" + std::to_string(y) + " Z" + std::to_string(zn + offset(x, y)) + " E" +
+                     std::to_string(e) + " F1800\n";
+            }
+        }
+    }
+    Parsed p = parse(s);
+    ASSERT_TRUE(p.stack.z_varies);
+    ASSERT_FALSE(p.stack.mesh.empty());
+    for (double x : {102.0, 120.0, 138.0})
+        for (double y : {101.0, 109.0}) EXPECT_NEAR(p.stack.mesh.at(x, y), offset(x, y), 0.03) << x << "," << y;
+}
