@@ -1,6 +1,7 @@
 // A mug for the scaffold corpus (mm, Z up, 40 mm tall): a 36 mm cylinder,
-// 2 mm walls, 2 mm floor, and a D-shaped handle whose upper arm leaves the
-// wall horizontally (the overhang a slicer supports).
+// 2 mm walls, 2 mm floor, and a D-shaped handle: its lower arm's flat
+// underside (z 6) juts 14 mm out of the wall (what a slicer supports), its
+// upper arm bridges from the wall to the handle's upright.
 $fn = 96;
 difference() {
     cylinder(d = 36, h = 40);
