@@ -8,7 +8,10 @@
       prints "total support layers": mm of filament of the extruding moves
       that travel in XY (retracts and primes excluded), all and those whose
       role contains "support" (;TYPE: lines, or Slic3r's per-line comments),
-      and the number of distinct Z heights with extrusion."""
+      and the number of distinct Z heights with extrusion.
+  extra-corpus.py results BASELINE.md DEFAULT.md ZERO.md
+      joins the baseline table (tests/data/corpus2/README.md) with two
+      tools/corpus-table outputs into docs/results.md's corpus2 table."""
 import re, struct, sys
 
 
@@ -107,9 +110,44 @@ def filament(path):
     print('%.1f %.1f %d' % (total, support, len(zs)))
 
 
+def results(baseline_md, default_md, zero_md):
+    """docs/results.md's corpus2 table: tools/corpus-table's rows at the default
+    and at --min-overhang-area 0, with the slicers' support from the baseline."""
+    base={}
+    for l in open(baseline_md):
+        c=[x.strip() for x in l.strip().strip('|').split('|')]
+        if len(c)<5 or not c[4].startswith('**'): continue
+        key={'PrusaSlicer 2.5 (grid, defaults)':'p','Slic3r 1.3 (defaults)':'s','Cura 4.13 normal':'c','Cura 4.13 tree':'t'}[c[1]]
+        base.setdefault(c[0],{})[key]=float(c[4].strip('*'))
+    def rows(path):
+        r={}
+        for l in open(path):
+            c=[x.strip() for x in l.strip().strip('|').split('|')]
+            if len(c)<11 or c[2] not in ('pillars','scaffold'): continue
+            r[(c[0],c[2])]=c
+        return r
+    d=rows(default_md)
+    z=rows(zero_md)
+    files=sorted({k[0] for k in d})
+    print('| file | points | pillars mm | scaffold mm | PrusaSlicer mm | Slic3r mm | Cura mm | Cura tree mm | scaffold / PrusaSlicer | scaffold / Slic3r | scaffold / Cura tree | unheld mm², all (counted) (pillars / scaffold) | collisions mm² (pillars / scaffold) | support extruded twice mm² (pillars / scaffold) | check (pillars / scaffold) | at `--min-overhang-area 0`, checked with nothing forgiven: unheld mm² (pillars / scaffold) | print time min: original / pillars / scaffold | scaffold s |')
+    print('|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|---|---|---|---:|')
+    tot={'pi':0,'sc':0,'p':0,'s':0,'c':0,'t':0}
+    for f in files:
+        m=f.split('.')[0]; b=base[m]; p=d[(f,'pillars')]; s=d[(f,'scaffold')]
+        pi=float(p[4]); sc=float(s[4])
+        for k,v in (('pi',pi),('sc',sc),('p',b['p']),('s',b['s']),('c',b['c']),('t',b['t'])): tot[k]+=v
+        zz=' / '.join('%s %s'%(z[(f,mm)][5].split()[0], z[(f,mm)][8]) for mm in ('pillars','scaffold')) + ' (scaffold %.0f mm, %.0f %% of tree)'%(float(z[(f,'scaffold')][4]), 100*float(z[(f,'scaffold')][4])/b['t'])
+        tp=re.match(r'([\d.]+) \(([\d.]+)\)',p[9]); ts=re.match(r'([\d.]+) \(([\d.]+)\)',s[9])
+        print('| %s | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f %% | %.0f %% | %.0f %% | %s / %s | %.2f / %.2f | %.0f / %.0f | %s / %s | %s | %s / %s / %s | %s |'%(
+            f,s[3],pi,sc,b['p'],b['s'],b['c'],b['t'],100*sc/b['p'],100*sc/b['s'],100*sc/b['t'],p[5],s[5],float(p[6]),float(s[6]),float(p[7]),float(s[7]),p[8],s[8],zz,tp.group(2),tp.group(1),ts.group(1),s[10]))
+    print('| **sum** | | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f %% | %.0f %% | %.0f %% | | | | | | | |'%(tot['pi'],tot['sc'],tot['p'],tot['s'],tot['c'],tot['t'],100*tot['sc']/tot['p'],100*tot['sc']/tot['s'],100*tot['sc']/tot['t']))
+
+
 def main():
     if sys.argv[1] == 'filament':
         return filament(sys.argv[2])
+    if sys.argv[1] == 'results':
+        return results(*sys.argv[2:5])
     src, dst, height, up = sys.argv[2], sys.argv[3], float(sys.argv[4]), sys.argv[5]
     tris = read_stl(src) if src.lower().endswith('.stl') else read_off(src)
     rot = UP[up]
