@@ -456,8 +456,10 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     sd.bar_checked = eager;
 }
 
-// Below this many seeds a thread costs more to start than it saves.
-constexpr std::size_t kSeedsPerThread = 32;
+// Seeds a thread must have to be worth starting: a thread costs its start
+// and, on a busy machine, a wait in the join for a core (measured: with 32,
+// 2 threads were slower than 1 while another build ran on the other core).
+constexpr std::size_t kSeedsPerThread = 128;
 
 void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
     for (int seed : seeds) {
