@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
-#include <limits>
 #include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
 #include <numbers>
 #include <thread>
 #include <tuple>
@@ -474,14 +475,23 @@ void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
         // Small chunks taken in turn, so threads slowed by a busy core still end together.
         std::atomic<std::size_t> next{0};
         constexpr std::size_t kChunk = 8;
+        // An error in a model callback reaches the caller as it would on one thread.
+        std::vector<std::exception_ptr> failed(threads);
         auto run = [&](int t) {
-            for (std::size_t i; (i = next.fetch_add(kChunk)) < seeds.size();)
-                for (std::size_t j = i; j < std::min(seeds.size(), i + kChunk); ++j) evaluate(seeds[j], *scratch_[t]);
+            try {
+                for (std::size_t i; (i = next.fetch_add(kChunk)) < seeds.size();)
+                    for (std::size_t j = i; j < std::min(seeds.size(), i + kChunk); ++j) evaluate(seeds[j], *scratch_[t]);
+            } catch (...) {
+                failed[t] = std::current_exception();
+                next = seeds.size();
+            }
         };
         std::vector<std::thread> pool;
         for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
         run(0);
         for (std::thread& th : pool) th.join();
+        for (const std::exception_ptr& e : failed)
+            if (e) std::rethrow_exception(e);
     }
     for (int seed : seeds)
         if (seeds_[seed].has) ranked_.insert({-seeds_[seed].best.score, seed});
