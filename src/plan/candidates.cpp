@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numbers>
+#include <thread>
 #include <tuple>
 
 #include <boost/geometry.hpp>
@@ -63,6 +66,7 @@ struct BridgeSearch::Scratch {
     std::vector<Near> pts;
     std::vector<double> miss_z;
     std::vector<int> hits, left, right, reach, gbeg, gend, count, by_t;
+    std::vector<char> carried;  // carries(i, z) at the current height
     std::vector<double> heights, wl, wr, ws;
 };
 
@@ -85,9 +89,12 @@ struct BridgeSearch::Index {
     }
 };
 
-BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings)
-    : model_(model), s_(settings), index_(std::make_shared<Index>()), scratch_(std::make_shared<Scratch>()) {
+BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings, int threads)
+    : model_(model), s_(settings), index_(std::make_shared<Index>()) {
     reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
+    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    threads_ = std::min(threads, kMaxPlanThreads);
+    for (int t = 0; t < threads_; ++t) scratch_.push_back(std::make_shared<Scratch>());
 }
 
 BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y1, double z) {
@@ -144,6 +151,7 @@ void BridgeSearch::mark_around(double x, double y) {
 bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double z) {
     if (!model_.segment_clear) return true;
     Key key = key_of(x0, y0, x1, y1, z);
+    std::lock_guard<std::mutex> lock(model_mutex_);
     if (auto it = bar_cache_.find(key); it != bar_cache_.end()) return it->second;
     // The bar fills the layers up to kBarThickness above z; its ends reach
     // into the pillar tops, so the whole pillar radius keeps the gap.
@@ -162,6 +170,7 @@ bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double 
 bool BridgeSearch::end_stands(double x, double y, double z) {
     if (!model_.end_stands) return true;
     const Key key{std::lround(x * 1000), std::lround(y * 1000), std::lround(z * 1000), 0, 0};
+    std::lock_guard<std::mutex> lock(model_mutex_);
     if (auto it = end_cache_.find(key); it != end_cache_.end()) return it->second;
     bool ok = model_.end_stands(x, y, z);
     end_cache_.emplace(key, ok);
@@ -180,15 +189,14 @@ void BridgeSearch::no_connector(int id, const Candidate& c) {
 // those whose span contains the point. The line meets the anchoring segment
 // (5 mm either side, along the sweep) of every point in the band, at the
 // point's own position along the line: those are the candidate ends.
-void BridgeSearch::evaluate(int seed) {
+// Touches only seeds_[seed] and sc (the caller ranks it): safe on any thread.
+void BridgeSearch::evaluate(int seed, Scratch& sc) {
     const int D = s_.sweep_directions;
     const int id = seed / D, k = seed % D;
     Seed& sd = seeds_[seed];
-    if (sd.has) ranked_.erase({-sd.best.score, seed});
     sd.dirty = false;
     sd.has = false;
     if (!alive_[id]) return;
-    ++evaluations_;
 
     const double L = s_.bridge_max_length, O = s_.bridge_max_offset;
     const double th = k * std::numbers::pi / D, c = std::cos(th), sn = std::sin(th);
@@ -198,7 +206,6 @@ void BridgeSearch::evaluate(int seed) {
     const double lean_per_mm = max_lean_per_layer(s_.layer_height, s_) / s_.layer_height;
 
     using Near = Scratch::Near;
-    Scratch& sc = *scratch_;
     std::vector<Near>& pts = sc.pts;
     pts.clear();
     sc.miss_z.clear();
@@ -271,6 +278,7 @@ void BridgeSearch::evaluate(int seed) {
 
     Candidate best;
     bool has = false;
+    int best_a = -1, best_b = -1;  // best's span: its carried list is built once, at the end
     std::vector<int>& count = sc.count;
     count.assign(n + 1, 0);
     std::vector<double>&wl = sc.wl, &wr = sc.wr;
@@ -299,10 +307,8 @@ void BridgeSearch::evaluate(int seed) {
         best.seed = seed;
         best.end0 = pts[a].id;
         best.end1 = pts[b].id;
-        best.carried.clear();
-        for (int i = a; i <= b; ++i)
-            if (carries(i, z)) best.carried.push_back(pts[i].id);
-        std::sort(best.carried.begin(), best.carried.end());
+        best_a = a;
+        best_b = b;
         has = true;
     };
     const bool eager = sd.blocked >= kLazyBars;
@@ -326,7 +332,8 @@ void BridgeSearch::evaluate(int seed) {
     std::vector<int>& by_t = sc.by_t;
     by_t.resize(n);
     for (int i = 0; i < n; ++i) by_t[i] = i;
-    std::stable_sort(by_t.begin(), by_t.end(), [&](int a, int b) { return pts[a].t > pts[b].t; });
+    // Ties by position: the order of a stable sort, without its buffer.
+    std::sort(by_t.begin(), by_t.end(), [&](int a, int b) { return pts[a].t > pts[b].t || (pts[a].t == pts[b].t && a < b); });
     std::vector<double>& ws = sc.ws;  // w of the points carried at the current height, ascending
     ws.clear();
     std::size_t next = 0;
@@ -339,25 +346,31 @@ void BridgeSearch::evaluate(int seed) {
         // No bridge at this height can beat the best so far: k carried
         // points have l_max >= (k-th smallest w) - z, so the score is at
         // most (k - 2) z - min length - k (w_k - z).
+        // (Skipped only when every k's bound is at most the best: the first
+        // one above it settles the question.)
         if (has) {
-            double bound = -std::numeric_limits<double>::infinity();
-            for (std::size_t kk = 3; kk <= ws.size(); ++kk) {
+            bool may_beat = false;
+            for (std::size_t kk = 3; kk <= ws.size() && !may_beat; ++kk) {
                 double kd = static_cast<double>(kk);
-                bound = std::max(bound, (kd - 2) * z - s_.bridge_min_length - kd * (ws[kk - 1] - z));
+                may_beat = (kd - 2) * z - s_.bridge_min_length - kd * (ws[kk - 1] - z) > best.score;
             }
-            if (bound <= best.score) continue;
+            if (!may_beat) continue;
         }
-        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + carries(i, z);
+        // Who is carried at this height, asked once per point, not per pass.
+        std::vector<char>& car = sc.carried;
+        car.resize(n);
+        for (int i = 0; i < n; ++i) car[i] = carries(i, z);
+        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + car[i];
         // wl[a]: largest w carried in [a..a_max]; wr[b]: in [b_min..b]; the
         // two overlap only on points at du = 0, so together they cover [a..b].
         double m = 0;
         for (int i = a_max; i >= 0; --i) {
-            if (carries(i, z)) m = std::max(m, pts[i].w);
+            if (car[i]) m = std::max(m, pts[i].w);
             wl[i] = m;
         }
         m = 0;
         for (int i = b_min; i < n; ++i) {
-            if (carries(i, z)) m = std::max(m, pts[i].w);
+            if (car[i]) m = std::max(m, pts[i].w);
             wr[i] = m;
         }
         // With k carried, largest w at least W and length at least len, a
@@ -436,10 +449,52 @@ void BridgeSearch::evaluate(int seed) {
         }
     }
     if (!has) return;
+    for (int i = best_a; i <= best_b; ++i)
+        if (carries(i, best.z)) best.carried.push_back(pts[i].id);
+    std::sort(best.carried.begin(), best.carried.end());
     sd.best = std::move(best);
     sd.has = true;
     sd.bar_checked = eager;
-    ranked_.insert({-sd.best.score, seed});
+}
+
+// Seeds a thread must have to be worth starting: a thread costs its start
+// and, on a busy machine, a wait in the join for a core (measured: with 32,
+// 2 threads were slower than 1 while another build ran on the other core).
+constexpr std::size_t kSeedsPerThread = 128;
+
+void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
+    for (int seed : seeds) {
+        Seed& sd = seeds_[seed];
+        if (sd.has) ranked_.erase({-sd.best.score, seed});
+        if (alive_[seed / s_.sweep_directions]) ++evaluations_;
+    }
+    const int threads = static_cast<int>(std::min<std::size_t>(threads_, seeds.size() / kSeedsPerThread));
+    if (threads <= 1) {
+        for (int seed : seeds) evaluate(seed, *scratch_[0]);
+    } else {
+        // Small chunks taken in turn, so threads slowed by a busy core still end together.
+        std::atomic<std::size_t> next{0};
+        constexpr std::size_t kChunk = 8;
+        // An error in a model callback reaches the caller as it would on one thread.
+        std::vector<std::exception_ptr> failed(threads);
+        auto run = [&](int t) {
+            try {
+                for (std::size_t i; (i = next.fetch_add(kChunk)) < seeds.size();)
+                    for (std::size_t j = i; j < std::min(seeds.size(), i + kChunk); ++j) evaluate(seeds[j], *scratch_[t]);
+            } catch (...) {
+                failed[t] = std::current_exception();
+                next = seeds.size();
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
+        run(0);
+        for (std::thread& th : pool) th.join();
+        for (const std::exception_ptr& e : failed)
+            if (e) std::rethrow_exception(e);
+    }
+    for (int seed : seeds)
+        if (seeds_[seed].has) ranked_.insert({-seeds_[seed].best.score, seed});
 }
 
 std::optional<Candidate> BridgeSearch::best() {
@@ -447,8 +502,10 @@ std::optional<Candidate> BridgeSearch::best() {
         std::vector<int> todo;
         todo.swap(dirty_);
         std::sort(todo.begin(), todo.end());
-        for (int seed : todo)
-            if (seeds_[seed].dirty) evaluate(seed);
+        // A seed removed and marked again is listed twice: once is enough.
+        todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+        todo.erase(std::remove_if(todo.begin(), todo.end(), [&](int seed) { return !seeds_[seed].dirty; }), todo.end());
+        evaluate_all(todo);
         if (ranked_.empty()) return std::nullopt;
         int seed = ranked_.begin()->second;
         Seed& sd = seeds_[seed];

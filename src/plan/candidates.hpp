@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -95,9 +96,17 @@ struct Candidate {
 // (tools/bench_plan.cpp, no model): 0.11, 0.21, 0.27 ms per point for 100,
 // 1k, 10k points at 1000 points per 200 x 200 mm; 7.6 ms per point for 10k
 // points crowded into 200 x 200 mm (K ~ 150).
+//
+// Threads. The seeds made dirty by one step are recomputed on up to
+// `threads` threads (0: the machine's cores, at most kMaxPlanThreads): a
+// seed's result depends only on the active set and on the model's answers,
+// which are pure (their caches and the model's own are behind one lock),
+// and the ranking is updated afterwards in seed order, so the plan is the
+// same for any thread count.
+inline constexpr int kMaxPlanThreads = 4;
 class BridgeSearch {
 public:
-    BridgeSearch(const ModelView& model, const Settings& settings);
+    BridgeSearch(const ModelView& model, const Settings& settings, int threads = 0);
     BridgeSearch(const BridgeSearch&) = delete;  // the rtree and buffers are its own
     BridgeSearch& operator=(const BridgeSearch&) = delete;
 
@@ -145,7 +154,9 @@ private:
     static Key key_of(double x0, double y0, double x1, double y1, double z);
 
     void mark_around(double x, double y);
-    void evaluate(int seed);
+    struct Scratch;                 // evaluate()'s buffers, one per thread
+    void evaluate(int seed, Scratch& sc);
+    void evaluate_all(const std::vector<int>& seeds);
     bool bar_clear(double x0, double y0, double x1, double y1, double z);
 
     const ModelView& model_;
@@ -168,8 +179,9 @@ private:
     long long evaluations_ = 0;
     struct Index;                   // the rtree over alive points
     std::shared_ptr<Index> index_;
-    struct Scratch;                 // evaluate()'s buffers
-    std::shared_ptr<Scratch> scratch_;
+    std::vector<std::shared_ptr<Scratch>> scratch_;  // per thread
+    int threads_ = 1;
+    std::mutex model_mutex_;        // the caches below and the model's own (Obstacles fills rasters lazily)
 };
 
 }  // namespace scaffold::plan

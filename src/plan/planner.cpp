@@ -73,9 +73,9 @@ struct BridgePlan {
 
 // The greedy loop (METHOD.md step 4): take the best bridge that can really
 // be built, remove what it carries, add its two ends, repeat.
-BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s) {
+BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0) {
     BridgePlan out;
-    BridgeSearch search(m, s);
+    BridgeSearch search(m, s, threads);
     for (const Active& a : start) search.add(a);
     // Bounded work where the model is in the way everywhere.
     long rejects_left = 20000 + 400 * static_cast<long>(start.size());
@@ -217,7 +217,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const Obstacles& o
     return plan_scaffold(points, model_view(obstacles), s);
 }
 
-Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& s) {
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& s, int threads) {
     ModelView m = model;
     if (s.buildplate_only && !m.end_stands && m.model_top_below)
         m.end_stands = [&model, &s](double x, double y, double z) {
@@ -228,7 +228,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
         const auto& p = points.points[i];
         start.push_back({p.x, p.y, point_top(p, m, s), i});
     }
-    BridgePlan plan = plan_bridges(start, m, s);
+    BridgePlan plan = plan_bridges(start, m, s, threads);
     Scaffold out;
     out.bridges = std::move(plan.bridges);
     out.columns = std::move(plan.connectors);

@@ -31,7 +31,9 @@ std::optional<Candidate> best_bridge(const std::vector<Active>& active, const Mo
 // vertical pillar under every point left (down to the bed, or to the model's
 // top where the model is below it). Input order does not matter.
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const Obstacles& obstacles, const Settings& settings);
-Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& settings);
+// `threads`: as BridgeSearch's (0: the machine's); the plan does not depend on it.
+Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& settings,
+                       int threads = 0);
 
 // The pipeline's: the same bridges, but every pillar (under points and
 // bridge ends) is dropped by drop_pillar, which steps around the model, and

@@ -335,6 +335,21 @@ TEST(PlannerPillars, EveryPointHeldByExactlyOneStructure) {
     EXPECT_EQ(carried, connectors);
 }
 
+TEST(PlannerDeterminism, AnyThreadCountGivesTheSamePlan) {
+    // Enough points that a step's dirty seeds are split over threads; the
+    // wall makes the bars and the ends ask the model (behind the lock).
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> xy(0, 60), z(5, 40);
+    std::vector<Xyz> xyz;
+    for (int i = 0; i < 300; ++i) xyz.push_back({xy(rng), xy(rng), 0.2 * std::round(z(rng) / 0.2)});
+    Settings s;
+    for (const plan::ModelView& m : {free_space(), wall_at_20()}) {
+        auto one = plan::plan_scaffold(points_of(xyz), m, s, 1);
+        EXPECT_GT(one.bridges.size(), 5u);
+        for (int threads : {2, 4}) expect_same(one, plan::plan_scaffold(points_of(xyz), m, s, threads));
+    }
+}
+
 TEST(PlannerDeterminism, SameInputTwiceAndShuffledGiveTheSamePlan) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> xy(0, 50), z(5, 30);
