@@ -10,52 +10,17 @@
 #include <sstream>
 
 #include "gcode/bgcode.hpp"
+#include "support/files.hpp"
 
 using namespace scaffold::gcode;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_all(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-std::string gunzip(const std::string& path) {
-    gzFile f = gzopen(path.c_str(), "rb");
-    if (!f) return {};
-    std::string s;
-    char buf[1 << 16];
-    int n;
-    while ((n = gzread(f, buf, sizeof buf)) > 0) s.append(buf, static_cast<std::size_t>(n));
-    gzclose(f);
-    return s;
-}
-
-void write_all(const std::string& path, const std::string& s) {
-    std::ofstream out(path, std::ios::binary);
-    out << s;
-}
-
-// Command part of each line, blanks and comments gone, spaces dropped.
-std::vector<std::string> commands(std::string_view text) {
-    std::vector<std::string> out;
-    std::size_t pos = 0;
-    while (pos < text.size()) {
-        std::size_t nl = text.find('\n', pos);
-        std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-        std::string_view l = text.substr(pos, end - pos);
-        pos = end + 1;
-        l = l.substr(0, l.find(';'));
-        std::string c;
-        for (char ch : l)
-            if (ch != ' ' && ch != '\t' && ch != '\r') c.push_back(ch);
-        if (!c.empty()) out.push_back(c);
-    }
-    return out;
-}
+std::string read_all(const std::string& path) { return scaffold::testing::load_file(path); }
+std::string gunzip(const std::string& path) { return scaffold::testing::load_file(path); }
+void write_all(const std::string& path, const std::string& s) { scaffold::testing::write_file(path, s); }
+using scaffold::testing::commands;
 
 // The program is built beside the tests in build/, not in the sanitizer
 // build (tools/test builds only scaffold_tests there): skip without it.

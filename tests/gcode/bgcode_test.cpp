@@ -10,6 +10,7 @@
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
+#include "support/files.hpp"
 
 using namespace scaffold::gcode;
 namespace fs = std::filesystem;
@@ -18,22 +19,9 @@ namespace {
 
 // Whole file, gunzipped when its name ends in .gz.
 std::string load(const std::string& path) {
-    if (path.size() > 3 && path.substr(path.size() - 3) == ".gz") {
-        gzFile f = gzopen(path.c_str(), "rb");
-        EXPECT_NE(f, nullptr) << path;
-        if (!f) return {};
-        std::string s;
-        char buf[1 << 16];
-        int n;
-        while ((n = gzread(f, buf, sizeof buf)) > 0) s.append(buf, static_cast<std::size_t>(n));
-        gzclose(f);
-        return s;
-    }
-    std::ifstream in(path, std::ios::binary);
-    EXPECT_TRUE(in) << path;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    std::string s = scaffold::testing::load_file(path);
+    EXPECT_FALSE(s.empty()) << path;
+    return s;
 }
 
 std::string decode_text(const std::string& bytes) { return bgcode::decode(Text(bytes), "t").ascii; }
@@ -41,24 +29,7 @@ std::string decode_text(const std::string& bytes) { return bgcode::decode(Text(b
 const std::string kShared = std::string(SCAFFOLD_SOURCE_DIR) + "/../shared/corpus/bgcode/";
 const std::string kData = std::string(SCAFFOLD_TEST_DATA) + "/";
 
-// The command part of each line (comment and trailing blanks cut, spaces
-// dropped: MeatPack keeps neither), blank results skipped.
-std::vector<std::string> commands(std::string_view text) {
-    std::vector<std::string> out;
-    std::size_t pos = 0;
-    while (pos < text.size()) {
-        std::size_t nl = text.find('\n', pos);
-        std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-        std::string_view l = text.substr(pos, end - pos);
-        pos = end + 1;
-        l = l.substr(0, l.find(';'));
-        std::string c;
-        for (char ch : l)
-            if (ch != ' ' && ch != '\t' && ch != '\r') c.push_back(ch);
-        if (!c.empty()) out.push_back(c);
-    }
-    return out;
-}
+using scaffold::testing::commands;
 
 struct Variant {
     bgcode::Compression compression;
