@@ -350,17 +350,17 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     const Extrusion ex = extrusion_problems(out, settings, is_support_move);
     r.support_filament_mm = ex.support_mm;
     r.model_filament_mm = ex.model_mm;
-    std::set<std::pair<std::uint32_t, int>> own;  // (original line, kind) the original had itself
-    if (original) {
-        const layers::LayerStack ostack = layers::build_layers(*original, settings);
-        const std::uint32_t ofirst = first_layer_start(ostack);
+    // (original line, kind) the original had itself; its start code needs no
+    // sorting out here: the output's start code is reported apart first.
+    std::set<std::pair<std::uint32_t, int>> own;
+    if (original)
         for (const Problem& q : extrusion_problems(*original, settings, [](const gcode::Move&) { return false; }).problems)
-            if (q.line >= ofirst) own.insert({q.line, static_cast<int>(q.kind)});
-    }
+            own.insert({q.line, static_cast<int>(q.kind)});
     // A tool change's purge (Bambu's M620..M621 flush, PrusaSlicer's wipe
     // tower change) is the slicer's own, like the start code's.
     std::vector<char> purge(out.lines.size(), 0);
-    for (std::size_t i = 0, open = 0; i < out.lines.size(); ++i) {
+    bool open = false;
+    for (std::size_t i = 0; i < out.lines.size(); ++i) {
         const gcode::BlockMarker m = gcode::block_marker(out.line_text(i));
         if (m.kind == gcode::BlockKind::ToolChange) open = m.opens;
         purge[i] = static_cast<char>(open || (m.kind == gcode::BlockKind::ToolChange && !m.opens));

@@ -21,18 +21,31 @@ constexpr double kZEps = 1e-4;
 
 bool extrudes(const gcode::Move& m) { return m.kind == gcode::MoveKind::Extrude; }
 
-// A levelled file's layers carry the slicer's nominal heights: each layer's
-// z is the previous one's plus the height its comment gives (;Z: where
-// given), else its lowest extrusion's z.
-void nominal_heights(const gcode::Program& program, LayerStack& stack) {
+// Per layer, the last layer comment after the layer before's last
+// extrusion and at or before its own; null where it has none.
+std::vector<const gcode::LayerHint*> hints_of(const gcode::Program& program, const LayerStack& stack) {
+    std::vector<const gcode::LayerHint*> out;
+    out.reserve(stack.layers.size());
     std::size_t hint = 0;
-    double z = 0;
-    for (Layer& L : stack.layers) {
-        double lowest = 1e300;
-        for (const Segment& s : L.segments) lowest = std::min(lowest, static_cast<double>(program.moves[s.move].z1));
+    for (const Layer& L : stack.layers) {
         const gcode::LayerHint* h = nullptr;
         while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= L.last_extrusion_line)
             h = &program.layer_hints[hint++];
+        out.push_back(h);
+    }
+    return out;
+}
+
+// A levelled file's layers carry the slicer's nominal heights: each layer's
+// z is the previous one's plus the height its comment gives (;Z: where
+// given), else its lowest extrusion's z.
+void nominal_heights(const gcode::Program& program, const std::vector<const gcode::LayerHint*>& hints, LayerStack& stack) {
+    double z = 0;
+    for (std::size_t i = 0; i < stack.layers.size(); ++i) {
+        Layer& L = stack.layers[i];
+        double lowest = 1e300;
+        for (const Segment& s : L.segments) lowest = std::min(lowest, static_cast<double>(program.moves[s.move].z1));
+        const gcode::LayerHint* h = hints[i];
         if (h && h->z > 0) z = h->z;
         else if (h && h->height > 0) z += h->height;
         else z = lowest;
@@ -41,17 +54,12 @@ void nominal_heights(const gcode::Program& program, LayerStack& stack) {
 }
 
 // The height the slicer states for each layer (;HEIGHT:, ;LAYER_HEIGHT:,
-// KISSlicer's z_thickness=), from the last hint at or before the layer's
-// last extrusion.
-void stated_heights(const gcode::Program& program, LayerStack& stack) {
-    std::size_t hint = 0;
+// KISSlicer's z_thickness=): the last one given at or before the layer.
+void stated_heights(const std::vector<const gcode::LayerHint*>& hints, LayerStack& stack) {
     double h = 0;
-    for (Layer& L : stack.layers) {
-        while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= L.last_extrusion_line) {
-            h = program.layer_hints[hint].height;
-            ++hint;
-        }
-        L.nominal_height = h > 0 ? h : 0;
+    for (std::size_t i = 0; i < stack.layers.size(); ++i) {
+        if (hints[i]) h = hints[i]->height;
+        stack.layers[i].nominal_height = h > 0 ? h : 0;
     }
 }
 
@@ -193,8 +201,9 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
     }
     if (!any) throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
     stack.layers.back().end_line = static_cast<std::uint32_t>(program.lines.size());
-    if (stack.z_varies) nominal_heights(program, stack);
-    stated_heights(program, stack);
+    const std::vector<const gcode::LayerHint*> hints = hints_of(program, stack);
+    if (stack.z_varies) nominal_heights(program, hints, stack);
+    stated_heights(hints, stack);
 
     // Heights and the layer beneath: by z, ignoring anything printed before
     // the first layer: the start code's purge and intro lines rest on the bed

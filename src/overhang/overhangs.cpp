@@ -225,11 +225,11 @@ bool held_near_end(const std::vector<layers::Segment>& segs, std::size_t first, 
 // the centre line held on both sides and no longer than `max_span` is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
 // A corner where the path turns counts as held when the piece beyond it is
-// held within a dangling end (first_held / last_held). Returns whether it drew.
+// held within a dangling end (first_held / last_held). Called for pieces
+// not held throughout. Returns whether it drew.
 bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                     const layers::BitGrid& held, double step, double max_span, bool first_held, bool last_held,
                     layers::BitGrid& over, std::vector<Sample>& p) {
-    if (all_samples_held(segs, first, last, held, step)) return false;  // nothing to draw
     piece_samples(segs, first, last, held, step, p);
     if (first_held) p.front().held = true;
     if (last_held) p.back().held = true;
@@ -319,9 +319,11 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             const auto [k, last] = pieces[q];
             const bool bridge = gcode::is_bridge(segs[k].role);
             // Corners: the path goes on from the piece before / into the next.
+            // Most pieces are held throughout: nothing to draw, no corner to
+            // look at.
+            if (all_samples_held(segs, k, last, held, s.resolution)) continue;
             const bool from_prev = q > 0 && joined(segs[k - 1], segs[k]);
             const bool into_next = q + 1 < pieces.size() && joined(segs[last], segs[last + 1]);
-            if (!from_prev && !into_next && all_samples_held(segs, k, last, held, s.resolution)) continue;
             const bool first_held =
                 from_prev && held_near_end(segs, pieces[q - 1].first, pieces[q - 1].second, held, s.resolution, true, samples);
             const bool last_held = into_next && held_near_end(segs, pieces[q + 1].first, pieces[q + 1].second, held,
