@@ -219,8 +219,10 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         double du = a.x * c + a.y * sn - uq, adv = std::abs(-a.x * sn + a.y * c - vq);
         if (std::abs(du) > L + 1e-6 || adv > O + 1e-6) continue;
         // Carried when at least the drop above the bar, and its connector
-        // from the bar's top leans no more than printable.
-        double t = std::min(a.z - s_.bridge_min_drop, a.z - kBarThickness - adv / lean_per_mm);
+        // from the bar's top leans no more than printable (its first loop
+        // stands straight on the bar, planner.cpp's connector_to).
+        double t = std::min(a.z - s_.bridge_min_drop,
+                            a.z - kBarThickness - (adv > 0 ? s_.layer_height + adv / lean_per_mm : 0.0));
         const int m0 = static_cast<int>(sc.miss_z.size());
         for (const Miss& ms : misses_[p])
             if (ms.direction == k && std::abs(ms.v - vq) < kEps) sc.miss_z.push_back(ms.z);

@@ -46,21 +46,30 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
 }
 
 // Whether the bottom loop of a column standing on the model's layer `layer`
-// rests on it: every side of the loop has at least one held vertex (model
-// within `reach`), so an unheld part is a dangling end shorter than a side
-// (METHOD.md's rule (b)): a loop may land on a sloping top, overhanging it
-// by less than a side, not only on a flat top that holds all of it.
+// rests on it (METHOD.md's rule (b), as the validator applies it to a loop's
+// sides): a vertex is anchored when model lies within `reach` of it, or of
+// a neighbour one side away (a side is shorter than a dangling end, so the
+// corner is held by the side before it); every side needs an anchored end,
+// and its unheld rest is then a dangling end shorter than the side. So a
+// loop lands on a sloping top, or across a slot narrower than about a side,
+// not only on a flat top that holds all of it.
 bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, double width, double reach) {
     const LoopShape shape = loop_shape(r, width);
-    bool first_held = false, prev_held = false;
-    for (int k = 0; k < shape.sides; ++k) {
-        double a = 2 * std::numbers::pi * k / shape.sides;
-        bool held = !obs.disc_clear(layer, x + shape.centre_radius * std::cos(a), y + shape.centre_radius * std::sin(a), reach);
-        if (k == 0) first_held = held;
-        else if (!held && !prev_held) return false;
-        prev_held = held;
+    const int n = shape.sides;
+    const double side = 2 * shape.centre_radius * std::sin(std::numbers::pi / n);
+    if (side > kDanglingEnd) return false;
+    std::array<bool, 48> held{};
+    bool any = false;
+    for (int k = 0; k < n; ++k) {
+        double a = 2 * std::numbers::pi * k / n;
+        held[k] = !obs.disc_clear(layer, x + shape.centre_radius * std::cos(a), y + shape.centre_radius * std::sin(a), reach);
+        any = any || held[k];
     }
-    return first_held || prev_held;
+    if (!any) return false;
+    auto anchored = [&](int k) { return held[k] || held[(k + 1) % n] || held[(k + n - 1) % n]; };
+    for (int k = 0; k < n; ++k)
+        if (!anchored(k) && !anchored((k + 1) % n)) return false;
+    return true;
 }
 
 // Radius of the thin pillar tried where the normal one finds no room, as a

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 // Vertical pillars: one per support point, down to the bed or to the model's
 // top surface, kept clear of the model by the XY gap on every layer. Where
 // the model bulges out below, the pillar steps aside a little per layer (no
@@ -58,6 +59,10 @@ inline bool in_contact(const Column& c, double z, double layer_height) {
     return c.contact_z > 0 && z > c.contact_z - 1.5 * layer_height;
 }
 
+// An unheld end of a bead this long is held (METHOD.md's rule (b); the
+// validator's default).
+inline constexpr double kDanglingEnd = 1.0;
+
 // The contact of a tip may come this close to the model.
 inline constexpr double kTipClearance = 0.2;
 
@@ -95,9 +100,11 @@ inline double loops_apart(double x0, double y0, double rc0, double x1, double y1
     return std::hypot(x1 - x0, y1 - y0) + std::abs(rc1 - rc0);
 }
 
-// Centre of a column at height z (linear between its ends).
+// Centre of a column at height z (linear between its ends; straight up to
+// lean_from where that is set).
 inline void column_centre_at(const Column& c, double z, double& x, double& y) {
-    double t = c.z1 > c.z0 ? (z - c.z0) / (c.z1 - c.z0) : 1.0;
+    const double z0 = std::max(c.z0, c.lean_from);
+    double t = c.z1 > z0 ? std::clamp((z - z0) / (c.z1 - z0), 0.0, 1.0) : 1.0;
     x = c.x0 + (c.x1 - c.x0) * t;
     y = c.y0 + (c.y1 - c.y0) * t;
 }

@@ -34,11 +34,19 @@ std::optional<Column> connector_to(const Candidate& b, const Active& a, double t
     std::vector<double> layers = m.tops_between(c.z0, c.z1, s.layer_height);
     if (layers.empty()) return std::nullopt;
     const double dist = std::hypot(c.x1 - c.x0, c.y1 - c.y0);
-    double prev = c.z0;
+    // The first loop stands on the bar, centred on it; the lean starts there.
+    if (dist > 0) {
+        if (layers.size() < 2) return std::nullopt;
+        c.lean_from = layers.front();
+    }
+    const double lean_z0 = std::max(c.z0, c.lean_from);
+    double prev = lean_z0;
     for (double z : layers) {
-        double shift = dist * (z - prev) / (c.z1 - c.z0);
-        if (shift > max_lean_per_layer(z - prev, s) + 1e-6) return std::nullopt;
-        prev = z;
+        if (z > lean_z0 + 1e-9) {
+            double shift = dist * (z - prev) / (c.z1 - lean_z0);
+            if (shift > max_lean_per_layer(z - prev, s) + 1e-6) return std::nullopt;
+            prev = z;
+        }
         if (!m.disc_clear) continue;
         double x, y;
         column_centre_at(c, z, x, y);

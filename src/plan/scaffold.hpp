@@ -23,6 +23,9 @@ struct Column {
     double contact_z = 0;           // z of the model contact this column tapers to (0 = none)
     double foot_radius = 0;         // flared foot on the bed (0 = none)
     double raft_size = 0;           // square raft under it on the first layer (0 = none)
+    // Height from which it leans (0 = from z0): a connector's first loop on
+    // a bar is centred on the bar, which is narrower than a loop is wide.
+    double lean_from = 0;
 };
 
 // A horizontal bar printed as a bridge at height z (its lowest layer's bottom).

@@ -7,12 +7,7 @@
 # reason and leaves the file untouched in place. Exits 77 (skipped) when the
 # folder is absent; the synthetic reproductions in tests/layers/dialects_test
 # and tests/splice keep the features tested then.
-#
-# Known not to pass yet (docs/wild.md): their only failure is unheld area
-# under points the planner reported it could not reach (a slot narrower than
-# a pillar beside a wall). The test demands exactly that of them, and fails
-# once they pass, so the list only shrinks.
-known_dropped=(cura31_space_shuttle simplify3d311_benchy)
+
 set -euo pipefail
 build="$1"; src="$2"
 wild="$src/../shared/corpus/wild"
@@ -45,19 +40,11 @@ for gz in "$wild"/*.gcode.gz; do
     n=$((n+1)); continue
   fi
   if [ $must_refuse -eq 1 ]; then echo "FAIL $name: a spiral vase was not refused"; fail=1; fi
-  known=0; for k in "${known_dropped[@]}"; do [ "$k" = "$name" ] && known=1; done
   set +e; "$build/scaffold-check" "$tmp/inplace.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; crc=$?; set -e
-  if [ $known -eq 1 ]; then
-    dropped="$(sed -n 's/^  "dropped_points": \([0-9]*\),$/\1/p' "$tmp/r.json")"
-    reasons="$(grep -c '^    - ' "$tmp/report.txt" || true)"
-    if [ $crc -eq 0 ]; then echo "FAIL $name passes now: take it off known_dropped"; fail=1
-    elif [ "$reasons" != 1 ] || ! grep -q '^    - unheld area' "$tmp/report.txt" || [ "${dropped:-0}" -eq 0 ]; then
-      echo "FAIL $name (known: unheld under dropped points only; dropped $dropped):"; cat "$tmp/report.txt"; fail=1
-    else echo "known $name: unheld area under $dropped dropped points"; fi
-  elif [ $crc -ne 0 ]; then
+  if [ $crc -ne 0 ]; then
     echo "FAIL $name:"; cat "$tmp/report.txt"; fail=1
   fi
   n=$((n+1))
 done
 [ $fail -eq 0 ] || exit 1
-echo "wild: $n files: --method none byte-identical, vases refused, every other output passes scaffold-check but the ${#known_dropped[@]} known"
+echo "wild: $n files: --method none byte-identical, vases refused, every other output passes scaffold-check"

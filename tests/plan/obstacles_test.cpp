@@ -154,3 +154,39 @@ TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
     c.contact_z = 0;  // under a bridge end with no tip
     EXPECT_FALSE(plan::in_contact(c, 33.6f, 0.2));
 }
+
+// A solid slab (infill lines along x, 0.45 mm apart) to z 4 with a slot 1 mm
+// across along its middle, open at both ends, and nothing above it up to a
+// point at z 8. The pillar under the point lands on the slab right under it:
+// its bottom loop crosses the slot, each side over it held at an end (the
+// validator's rule (b): a corner is held by the side before it, the rest is a
+// dangling end shorter than a side), as on a real anchor's narrow groove.
+TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
+    Settings s;
+    layers::LayerStack st;
+    for (int i = 0; i < 40; ++i) {
+        layers::Layer l;
+        l.z = 0.2 * (i + 1);
+        l.height = 0.2;
+        l.below = i - 1;
+        l.on_bed = i == 0;
+        if (i < 20)
+            for (double y = 100.225; y < 120; y += 0.45)
+                if (std::abs(y - 110) > 0.5 + 0.225)
+                    l.segments.push_back({100, float(y), 120, float(y), 0.45f, gcode::Role::SolidInfill,
+                                          static_cast<std::uint32_t>(l.segments.size())});
+        if (l.segments.empty()) l.segments.push_back({0, 0, 0.5f, 0, 0.45f, gcode::Role::Perimeter, 0});
+        st.layers.push_back(l);
+    }
+    st.bounds = {-5, -5, 130, 130};
+    const plan::Obstacles obs(st, s);
+    EXPECT_TRUE(obs.disc_clear(19, 110, 110, 0.4));  // the slot is open
+    auto chain = plan::drop_pillar(110, 110, 39, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain.has_value());
+    ASSERT_FALSE(chain->empty());
+    const plan::Column& base = chain->front();
+    EXPECT_EQ(base.base, plan::Base::Model);
+    EXPECT_NEAR(base.z0, 4.0, 1e-6);
+    EXPECT_NEAR(base.x0, 110, 1e-9);
+    EXPECT_NEAR(base.y0, 110, 1e-9);
+}

@@ -103,16 +103,21 @@ TEST(PlannerScore, GainAndScoreByHand) {
 TEST(PlannerReport, FourPointExampleGivesTheReportsBridge) {
     // Tupek's appendix: points (18,24,17), (11,15,20), (19,9,15), (25,20,18);
     // the report's output is one bridge (11,20)-(25,20) at z 15 carrying all
-    // but (19,9,15). By hand, sweep line y = 20 (direction 0, through (25,20)):
+    // but (19,9,15). Here the bar is one layer lower, z 14.8: a connector's
+    // first loop stands centred on the bar (a 0.75 mm loop leaning 0.5 mm off
+    // a 0.9 mm wide bar at once would overhang its side, METHOD's rule (a)),
+    // so the lean starts one layer up. By hand, sweep line y = 20 (direction
+    // 0, through (25,20)):
     //   ends (11,20) and (25,20): length 14, within 5..30;
-    //   (25,20,18): 0 mm aside, 18 >= 15 + 2;  l = 0 + 3 = 3
-    //   (18,24,17): 4 mm aside, 17 >= 15 + 2;  connector rises 17 - 15.4 =
-    //               1.6 mm = 8 layers, leans 4 / 8 = 0.5 mm a layer (the limit); l = 4 + 2 = 6
-    //   (11,15,20): 5 mm aside, 20 >= 17;      l = 5 + 5 = 10
+    //   (25,20,18): 0 mm aside, 18 >= 14.8 + 2;  l = 0 + 3.2 = 3.2
+    //   (18,24,17): 4 mm aside, 17 >= 16.8; the connector rises 17 - 15.2 =
+    //               1.8 mm = 9 layers, one straight, then leans 4 / 8 = 0.5 mm
+    //               a layer (the limit); l = 4 + 2.2 = 6.2
+    //   (11,15,20): 5 mm aside, 20 >= 16.8;     l = 5 + 5.2 = 10.2
     //   (19,9,15):  11 mm aside: not carried.
-    //   gain = (3 - 2) * 15 - 14 = 1; l_max = 10; score = 1 - 3 * 10 = -29.
-    // Higher bars carry fewer points: at z 16 (from 18 - 2), (18,24,17) drops
-    // out and (2 - 2) * 16 - 14 < 0.
+    //   gain = (3 - 2) * 14.8 - 14 = 0.8; l_max = 10.2; score = 0.8 - 3 * 10.2 = -29.8.
+    // Higher bars carry fewer points: at z 15 (18,24,17) would lean 4 mm over
+    // 7 layers and drops out, and (2 - 2) * 15 - 14 < 0.
     Settings s;
     auto sc = plan::plan_scaffold(points_of(kReportPoints), free_space(), s);
     ASSERT_EQ(sc.bridges.size(), 1u);
@@ -121,20 +126,20 @@ TEST(PlannerReport, FourPointExampleGivesTheReportsBridge) {
     EXPECT_NEAR(b.y0, 20, 1e-9);
     EXPECT_NEAR(b.x1, 25, 1e-9);
     EXPECT_NEAR(b.y1, 20, 1e-9);
-    EXPECT_NEAR(b.z, 15, 1e-9);
+    EXPECT_NEAR(b.z, 14.8, 1e-9);
     EXPECT_NEAR(std::hypot(b.x1 - b.x0, b.y1 - b.y0), 14, 1e-9);
-    EXPECT_NEAR(b.gain, 1, 1e-9);
-    EXPECT_NEAR(b.score, -29, 1e-9);
+    EXPECT_NEAR(b.gain, 0.8, 1e-9);
+    EXPECT_NEAR(b.score, -29.8, 1e-9);
     std::vector<int> carried = b.points;
     std::sort(carried.begin(), carried.end());
     EXPECT_EQ(carried, (std::vector<int>{0, 1, 3}));
-    // Connectors from the bar top (15.4) to each carried point, from the
+    // Connectors from the bar top (15.2) to each carried point, from the
     // nearest point of the bar; pillars under (19,9) and under both ends.
     int connectors = 0, pillars = 0, end_pillars = 0;
     for (const auto& c : sc.columns) {
         if (c.base == plan::Base::Bridge) {
             ++connectors;
-            EXPECT_NEAR(c.z0, 15.4, 1e-9);
+            EXPECT_NEAR(c.z0, 15.2, 1e-9);
             EXPECT_NEAR(c.y0, 20, 1e-9);
             EXPECT_NEAR(c.x0, c.x1, 1e-9);  // the nearest bar point is straight across
             EXPECT_EQ(c.top, plan::Top::Contact);
@@ -145,7 +150,7 @@ TEST(PlannerReport, FourPointExampleGivesTheReportsBridge) {
             ++pillars;
             if (c.top == plan::Top::Bridge) {
                 ++end_pillars;
-                EXPECT_NEAR(c.z1, 15, 1e-9);
+                EXPECT_NEAR(c.z1, 14.8, 1e-9);
             } else {
                 EXPECT_EQ(c.point, 2);
             }
@@ -160,7 +165,7 @@ TEST(PlannerReport, FourPointExampleGivesTheReportsBridge) {
         active.push_back({kReportPoints[i][0], kReportPoints[i][1], kReportPoints[i][2], static_cast<int>(i)});
     auto c = plan::best_bridge(active, free_space(), s);
     ASSERT_TRUE(c.has_value());
-    EXPECT_NEAR(c->score, -29, 1e-9);
+    EXPECT_NEAR(c->score, -29.8, 1e-9);
     EXPECT_EQ(c->carried, (std::vector<int>{0, 1, 3}));
 }
 
@@ -172,8 +177,8 @@ TEST(PlannerReport, SameBridgeThroughTheRealObstacles) {
     for (auto& p : pts.points) p.z = st.layers[p.layer].z - 0.2;  // the layer grid's own z
     for (const auto& sc : {plan::plan_scaffold(pts, obs, s), plan::plan_scaffold(pts, st, obs, s)}) {
         ASSERT_EQ(sc.bridges.size(), 1u);
-        EXPECT_NEAR(sc.bridges[0].z, 15, 1e-6);
-        EXPECT_NEAR(sc.bridges[0].gain, 1, 1e-6);
+        EXPECT_NEAR(sc.bridges[0].z, 14.8, 1e-6);
+        EXPECT_NEAR(sc.bridges[0].gain, 0.8, 1e-6);
         EXPECT_EQ(sc.bridges[0].points.size(), 3u);
         EXPECT_TRUE(sc.dropped_points.empty());
         auto held = holders(sc, pts.points.size());
@@ -242,42 +247,58 @@ TEST(PlannerModel, PillarStandsOnTheModelBelow) {
 TEST(PlannerModel, ConnectorsLeanAtMostHalfThePillarRadiusPerLayer) {
     // One sweep direction (lines along x). A (0,0,20), B (12,0,20), C (6,4,20):
     // on the line y = 0 C is 4 mm aside. With pillar radius 1 a connector may
-    // lean 0.5 mm a layer = 2.5 mm per mm of rise, so C needs a rise of 1.6 mm
-    // from the bar's top: bar at most 20 - 0.4 - 1.6 = 18, as the 2 mm drop
-    // allows anyway. gain 1 * 18 - 12 = 6, l_max 4 + 2 = 6, score 6 - 18 = -12.
+    // lean 0.5 mm a layer = 2.5 mm per mm of rise, so C needs a rise of 1.6 mm,
+    // plus one straight 0.2 mm layer on the bar (the first loop stands centred
+    // on it): bar at most 20 - 0.4 - 0.2 - 1.6 = 17.8, below the 2 mm drop.
+    // gain 1 * 17.8 - 12 = 5.8, l_max 4 + 2.2 = 6.2, score 5.8 - 18.6 = -12.8.
     // With radius 0.5: 0.25 mm a layer, 1.25 mm per mm, a rise of 3.2 mm:
-    // bar at 20 - 0.4 - 3.2 = 16.4, gain 4.4, l_max 4 + 3.6 = 7.6, score -18.4.
-    // (The line y = 4 through C gives the same numbers with A and B aside.)
+    // bar at 20 - 0.4 - 0.2 - 3.2 = 16.2, gain 4.2, l_max 4 + 3.8 = 7.8,
+    // score -19.2. (The line y = 4 through C gives the same numbers with A
+    // and B aside.)
     Settings s;
     s.sweep_directions = 1;
     std::vector<plan::Active> a{{0, 0, 20, 0}, {12, 0, 20, 1}, {6, 4, 20, 2}};
     auto c = plan::best_bridge(a, free_space(), s);
     ASSERT_TRUE(c.has_value());
-    EXPECT_NEAR(c->z, 18, 1e-9);
-    EXPECT_NEAR(c->score, -12, 1e-9);
+    EXPECT_NEAR(c->z, 17.8, 1e-9);
+    EXPECT_NEAR(c->score, -12.8, 1e-9);
     EXPECT_EQ(c->carried.size(), 3u);
     s.pillar_radius = 0.5;
     c = plan::best_bridge(a, free_space(), s);
     ASSERT_TRUE(c.has_value());
-    EXPECT_NEAR(c->z, 16.4, 1e-9);
-    EXPECT_NEAR(c->gain, 4.4, 1e-9);
-    EXPECT_NEAR(c->score, -18.4, 1e-9);
+    EXPECT_NEAR(c->z, 16.2, 1e-9);
+    EXPECT_NEAR(c->gain, 4.2, 1e-9);
+    EXPECT_NEAR(c->score, -19.2, 1e-9);
     s = Settings{};
-    // Every connector of a bigger plan keeps the limit.
+    // Every connector of a bigger plan keeps the limit, and its first loop
+    // is centred on the bar (a loop is wider than the bar: one leaning off
+    // it at once overhangs the bar's side).
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> xy(0, 50), z(5, 30);
     std::vector<Xyz> xyz;
     for (int i = 0; i < 150; ++i) xyz.push_back({xy(rng), xy(rng), 0.2 * std::round(z(rng) / 0.2)});
     auto sc = plan::plan_scaffold(points_of(xyz), free_space(), s);
     double steepest = 0;
+    int leaning = 0;
     for (const auto& col : sc.columns)
         if (col.base == plan::Base::Bridge) {
             int layers = static_cast<int>(std::lround((col.z1 - col.z0) / 0.2));
             ASSERT_GT(layers, 0);
-            double lean = std::hypot(col.x1 - col.x0, col.y1 - col.y0) / layers;
+            double x, y;
+            plan::column_centre_at(col, col.z0 + 0.2, x, y);
+            EXPECT_NEAR(x, col.x0, 1e-9);
+            EXPECT_NEAR(y, col.y0, 1e-9);
+            const double dist = std::hypot(col.x1 - col.x0, col.y1 - col.y0);
+            if (dist == 0) continue;
+            ++leaning;
+            ASSERT_GT(layers, 1);
+            plan::column_centre_at(col, col.z0 + 0.4, x, y);
+            EXPECT_NEAR(std::hypot(x - col.x0, y - col.y0), dist / (layers - 1), 1e-9);
+            double lean = dist / (layers - 1);
             EXPECT_LE(lean, plan::kMaxLeanPerLayer * s.pillar_radius + 1e-9);
             steepest = std::max(steepest, lean);
         }
+    EXPECT_GT(leaning, 5);
     EXPECT_GT(steepest, 0.3);  // the limit is reached for, not avoided
 }
 
