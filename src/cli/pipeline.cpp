@@ -14,6 +14,7 @@
 #include "layers/layer_stack.hpp"
 #include "overhang/dump.hpp"
 #include "overhang/overhangs.hpp"
+#include "plan/coverage.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
 #include "plan/planner.hpp"
@@ -24,6 +25,9 @@
 namespace scaffold::cli {
 
 namespace {
+
+// Rounds of points for what tips set off their points leave unheld.
+constexpr int kCoverRounds = 3;
 
 using Clock = std::chrono::steady_clock;
 
@@ -154,7 +158,7 @@ void run(const Request& req, spdlog::logger& log) {
     std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
     const overhang::Overhangs overhangs = overhang::find_overhangs(stack, settings);
-    const overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
+    overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
     time.lap("overhangs");
     if (auto it = req.files.find("dump-points"); it != req.files.end()) overhang::write_points_json(it->second, points);
     if (auto it = req.files.find("dump-layers"); it != req.files.end())
@@ -170,9 +174,14 @@ void run(const Request& req, spdlog::logger& log) {
                  "same mesh, as the model's own moves give it");
 
     auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
-    const plan::Scaffold scaffold = settings.method == Method::Pillars
-                                        ? plan::plan_pillars(points, stack, *obstacles, settings)
-                                        : plan::plan_scaffold(points, stack, *obstacles, settings);
+    plan::Scaffold scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
+                                                                 : plan::plan_scaffold(points, stack, *obstacles, settings);
+    // A tip set off its point (a slot, a wall) holds less of the sheet than
+    // the point stood for (METHOD's rule (c)): what it leaves gets points and
+    // pillars of its own, a few rounds at most.
+    if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, *obstacles, settings,
+                                           settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
+        log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
     time.lap("plan");
     const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
     obstacles.reset();  // one raster per layer: free before the text is read again

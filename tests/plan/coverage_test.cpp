@@ -1,0 +1,107 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "layers/layer_stack.hpp"
+#include "overhang/overhangs.hpp"
+#include "plan/coverage.hpp"
+#include "plan/obstacles.hpp"
+#include "plan/pillars.hpp"
+
+using namespace scaffold;
+
+namespace {
+
+// 0.2 mm layers to z 6; on layer 20 (z 4.2) a floating sheet 10 x 2 mm (lines
+// along x at y 99.2..100.8), nothing under it; a speck far away keeps every
+// layer non-empty.
+layers::LayerStack floating_sheet() {
+    layers::LayerStack st;
+    for (int i = 0; i < 30; ++i) {
+        layers::Layer l;
+        l.z = 0.2 * (i + 1);
+        l.height = 0.2;
+        l.below = i - 1;
+        l.on_bed = i == 0;
+        if (i > 0) l.beneath = {i - 1};
+        l.segments.push_back({10, 10, 10.5f, 10, 0.45f, gcode::Role::Perimeter, 0});
+        if (i == 20)
+            for (double y = 99.2; y < 100.9; y += 0.4)
+                l.segments.push_back({100, float(y), 110, float(y), 0.45f, gcode::Role::SolidInfill,
+                                      static_cast<std::uint32_t>(l.segments.size())});
+        st.layers.push_back(l);
+    }
+    st.bounds = {5, 5, 120, 120};
+    return st;
+}
+
+// The sheet's overhang (layer 20), the only one.
+overhang::Overhangs sheet_overhang(const layers::LayerStack& st, const Settings& s) {
+    overhang::Overhangs all = overhang::find_overhangs(st, s);
+    EXPECT_EQ(all.layers.size(), 1u);
+    EXPECT_EQ(all.layers.at(0).layer, 20);
+    return all;
+}
+
+plan::Column tip_at(double x, double y) {
+    plan::Column c;
+    c.x0 = c.x1 = x;
+    c.y0 = c.y1 = y;
+    c.z0 = 0;
+    c.z1 = 4.0;
+    c.contact_z = 4.0;
+    c.top = plan::Top::Contact;
+    return c;
+}
+
+}  // namespace
+
+TEST(Coverage, ATipHoldsThePointRadiusOfTheSheetItLiesUnder) {
+    Settings s;
+    const auto st = floating_sheet();
+    const plan::Obstacles obs(st, s);
+    const overhang::Overhangs over = sheet_overhang(st, s);
+    ASSERT_EQ(over.layers.size(), 1u);
+    EXPECT_NEAR(over.area_mm2, 10.4 * 2.05, 1.5);
+    // A tip under the sheet's left end: the right end, more than 3.5 mm
+    // (the point radius) from it, is left.
+    plan::Scaffold one;
+    one.columns.push_back(tip_at(101, 100));
+    const overhang::Overhangs left = plan::unheld_by_tips(over, one, st, obs, s);
+    ASSERT_EQ(left.layers.size(), 1u);
+    EXPECT_GT(left.area_mm2, 5.0);
+    EXPECT_LT(left.area_mm2, over.area_mm2 - 5.0);
+    const layers::BitGrid& g = left.layers[0].cells;
+    EXPECT_FALSE(g.get(g.col(101), g.row(100)));
+    EXPECT_TRUE(g.get(g.col(109), g.row(100)));
+    // The same tip 1.5 mm beside the sheet touches none of it: it holds nothing.
+    plan::Scaffold beside;
+    beside.columns.push_back(tip_at(101, 98.0 - 0.6));
+    EXPECT_NEAR(plan::unheld_by_tips(over, beside, st, obs, s).area_mm2, over.area_mm2, 1e-9);
+    // A tip under each end holds it all.
+    plan::Scaffold two = one;
+    two.columns.push_back(tip_at(108, 100));
+    EXPECT_TRUE(plan::unheld_by_tips(over, two, st, obs, s).layers.empty());
+}
+
+TEST(Coverage, WhatATipLeavesGetsAPointAndAPillar) {
+    Settings s;
+    const auto st = floating_sheet();
+    const plan::Obstacles obs(st, s);
+    const overhang::Overhangs over = sheet_overhang(st, s);
+    overhang::SupportPoints points;
+    points.points.push_back({101, 100, 4.0, 20});
+    plan::Scaffold sc;
+    sc.columns.push_back(tip_at(101, 100));
+    sc.columns.back().point = 0;
+    const std::size_t added = plan::cover_unheld(sc, points, over, st, obs, s, plan::kBranchSteer, 3);
+    EXPECT_GE(added, 1u);
+    EXPECT_EQ(points.points.size(), 1 + added);
+    EXPECT_TRUE(sc.dropped_points.empty());
+    for (std::size_t i = 1; i < points.points.size(); ++i) {
+        EXPECT_EQ(points.points[i].layer, 20);
+        EXPECT_GT(points.points[i].x, 104.5);
+    }
+    for (const auto& c : sc.columns) EXPECT_LT(c.point, static_cast<int>(points.points.size()));
+    EXPECT_TRUE(plan::unheld_by_tips(over, sc, st, obs, s).layers.empty());
+}
