@@ -227,7 +227,7 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
-                                               const Settings& s, const Trunks* trunks) {
+                                               const Settings& s, const Trunks* trunks, TipPlaces places) {
     int top_layer = stack.layers[overhang_layer].below;
     if (top == Top::Contact)
         for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
@@ -286,6 +286,7 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     };
     // Under the sheet first; then anywhere within reach of the point.
     for (bool pass : {true, false}) {
+        if ((pass && places == TipPlaces::Beside) || (!pass && places == TipPlaces::UnderSheet)) continue;
         under_sheet = pass;
         if (auto chain = search(proto)) return chain;
         // A short, thin pillar lands on a small or sloping top of the model

@@ -40,9 +40,14 @@ inline constexpr double kBranchSteer = 3.0;
 // --top-gap-layers), near (x, y), as columns from the bottom up. nullopt when
 // no clear path exists (or it would stand on the model with --buildplate-only).
 // With `trunks`, it may end on one of them (Base::Column).
+// `places`: where a tip may stand away from the point (METHOD's rule (c) holds
+// only the sheet a tip lies under): under the overhanging layer's material
+// first, then anywhere within reach (Any), or only one of the two.
+enum class TipPlaces { Any, UnderSheet, Beside };
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
-                                               const Settings& settings, const Trunks* trunks = nullptr);
+                                               const Settings& settings, const Trunks* trunks = nullptr,
+                                               TipPlaces places = TipPlaces::Any);
 
 // Support point indices in a canonical order, so the plan does not depend
 // on the order of the input: place_points' own (layer, y, x), then z and index.

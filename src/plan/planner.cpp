@@ -5,6 +5,7 @@
 #include <numbers>
 #include <utility>
 
+#include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
 
 namespace scaffold::plan {
@@ -289,9 +290,9 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     trunks.add(out.columns, stack, s);
     for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
-        auto chain = overhang_layer < 0 ? std::nullopt
-                                        : drop_pillar(a.x, a.y, overhang_layer, a.point >= 0 ? Top::Contact : Top::Bridge,
-                                                      stack, obs, s, &trunks);
+        std::optional<std::vector<Column>> chain;
+        if (overhang_layer >= 0 && a.point < 0) chain = drop_pillar(a.x, a.y, overhang_layer, Top::Bridge, stack, obs, s, &trunks);
+        if (overhang_layer >= 0 && a.point >= 0) chain = support_point(a.x, a.y, overhang_layer, stack, obs, s, &trunks);
         if (!chain) {
             if (a.point >= 0) out.dropped_points.push_back(a.point);
             else out.unheld_bridge_ends.push_back({a.x, a.y, a.z});

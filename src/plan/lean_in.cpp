@@ -1,0 +1,84 @@
+#include "plan/lean_in.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+namespace scaffold::plan {
+
+std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_layer, const layers::LayerStack& stack,
+                                           const Obstacles& obs, const Settings& s, const Trunks* trunks) {
+    int top_layer = stack.layers[overhang_layer].below;
+    for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
+    if (top_layer < 0) return std::nullopt;
+    // The layers below the tip, top first.
+    std::vector<int> down;
+    for (int l = top_layer; l >= 0 && static_cast<int>(down.size()) < 400; l = stack.layers[l].below)
+        down.push_back(l);
+    Column lean;
+    lean.z1 = stack.layers[top_layer].z;
+    lean.contact_z = lean.z1;
+    lean.radius = s.tip_radius;  // thin all the way: it stands on the pillar's tapered top
+    lean.top = Top::Contact;
+    lean.base = Base::Column;
+    static constexpr std::array<double, 9> kRings{1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.5, kLeanInReach};
+    // The tip at the point or, where its own contact has no room, beside it
+    // under the overhanging layer's material (METHOD's rule (c)).
+    static constexpr std::array<double, 5> kTipRings{0.0, 0.25, 0.5, 0.75, 1.0};
+    for (double dt : kTipRings)
+        for (int tdir = 0; tdir < (dt == 0 ? 1 : 8); ++tdir) {
+            const double tx = x + dt * std::cos(tdir * std::numbers::pi / 4), ty = y + dt * std::sin(tdir * std::numbers::pi / 4);
+            if (dt > 0 && obs.disc_clear(overhang_layer, tx, ty, s.tip_radius + s.resolution)) continue;
+            lean.x1 = tx;
+            lean.y1 = ty;
+            if (!obs.disc_clear(top_layer, tx, ty, column_radius_at(lean, lean.z1, s) + clearance_at(lean, lean.z1, s)))
+                continue;
+            for (double d : kRings)
+                for (int dir = 0; dir < 16; ++dir) {
+                    const double a = dir * std::numbers::pi / 8, px = tx + d * std::cos(a), py = ty + d * std::sin(a);
+                    // Lean over as many layers as a loop needs to shift no
+                    // more than it may on the one below; the first loop
+                    // stands on the pillar.
+                    std::size_t n = 1;  // layers of the leaning column: down[0..n-1]
+                    double step = 1e9;
+                    do {
+                        step = std::min(step, loop_shift_limit(stack.layers[down[n - 1]].height, s));
+                        ++n;
+                    } while (n < down.size() && d / static_cast<double>(n - 1) > step);
+                    if (n >= down.size() || d / static_cast<double>(n - 1) > step) continue;
+                    Column c = lean;
+                    c.x0 = px;
+                    c.y0 = py;
+                    c.z0 = stack.layers[down[n]].z;
+                    c.lean_from = stack.layers[down[n - 1]].z;
+                    bool clear = true;
+                    for (std::size_t k = 1; k < n && clear; ++k) {
+                        const double z = stack.layers[down[k]].z;
+                        double cx, cy;
+                        column_centre_at(c, z, cx, cy);
+                        clear = obs.disc_clear(down[k], cx, cy, column_radius_at(c, z, s) + clearance_at(c, z, s));
+                    }
+                    if (!clear) continue;
+                    // A pillar under it up to the leaning column's first loop.
+                    auto chain = drop_pillar(px, py, down[n - 1], Top::Bridge, stack, obs, s, trunks);
+                    if (!chain) continue;
+                    if (s.buildplate_only && (chain->empty() || chain->front().base != Base::Bed)) continue;
+                    if (chain->empty()) c.base = Base::Model;  // the model's top holds it
+                    chain->push_back(c);
+                    return chain;
+                }
+        }
+    return std::nullopt;
+}
+
+std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
+                                                 const layers::LayerStack& stack, const Obstacles& obs,
+                                                 const Settings& s, const Trunks* trunks) {
+    if (auto chain = drop_pillar(x, y, overhang_layer, Top::Contact, stack, obs, s, trunks, TipPlaces::UnderSheet))
+        return chain;
+    if (auto chain = lean_in(x, y, overhang_layer, stack, obs, s, trunks)) return chain;
+    return drop_pillar(x, y, overhang_layer, Top::Contact, stack, obs, s, trunks, TipPlaces::Beside);
+}
+
+}  // namespace scaffold::plan

@@ -1,0 +1,33 @@
+#pragma once
+// The last resort for a point no pillar reaches from below (an ear over a
+// sloping shoulder, a lip over a narrow slot): a thin column leaning in to
+// it from a pillar that stands up to a layer lower beside the obstacle, as
+// far as a loop may shift on the one below per layer.
+#include <optional>
+#include <vector>
+
+#include "layers/layer_stack.hpp"
+#include "plan/obstacles.hpp"
+#include "plan/pillars.hpp"
+#include "plan/scaffold.hpp"
+
+namespace scaffold::plan {
+
+// Columns bottom up, the last the leaning one whose tip is at (x, y) under
+// `overhang_layer` (less --top-gap-layers); nullopt when none is found
+// within kLeanInReach mm. With --buildplate-only the pillar stands on the bed.
+std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_layer, const layers::LayerStack& stack,
+                                           const Obstacles& obstacles, const Settings& settings,
+                                           const Trunks* trunks = nullptr);
+
+// The scaffold's support of a point that no bridge carries: a pillar whose
+// tip lies under the sheet (drop_pillar), else one leaning in (lean_in),
+// else a pillar whose tip stands beside the sheet within reach.
+std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
+                                                 const layers::LayerStack& stack, const Obstacles& obstacles,
+                                                 const Settings& settings, const Trunks* trunks);
+
+// Farthest a leaning column comes from (mm, horizontally).
+inline constexpr double kLeanInReach = 8.0;
+
+}  // namespace scaffold::plan
