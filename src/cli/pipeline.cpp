@@ -74,7 +74,8 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
     for (std::uint32_t i = 0; i < p.lines.size(); ++i) {
         std::string_view t = p.line_text(i);
         if (t.empty() || t[0] != ';' ||
-            (t.find("ilament used") == std::string_view::npos && t.find("ilament cost") == std::string_view::npos))
+            (t.find("ilament used") == std::string_view::npos && t.find("ilament cost") == std::string_view::npos &&
+             t.substr(0, 10) != ";MATERIAL:"))
             continue;
         std::string s(t);
         auto value_after = [&](std::string_view key, double& v, std::size_t& at) {
@@ -94,6 +95,8 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
             repl = s.substr(0, at) + fixed(v + add_g, 2);
         else if (add_cost > 0 && (value_after("; total filament cost = ", v, at) || value_after("; filament cost = ", v, at)))
             repl = s.substr(0, at) + fixed(v + add_cost, 2);
+        else if (value_after(";MATERIAL:", v, at))  // UltiGCode: mm^3 of the first extruder
+            repl = s.substr(0, at) + std::to_string(std::lround(v + add_cm3 * 1000));
         else if (value_after(";Filament used: ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm / 1000, 5) + "m";
         else if (value_after("; filament used = ", v, at))
             repl = s.substr(0, at) + fixed(v + add_mm, 1) + "mm (" + fixed(filament_volume_cm3(v + add_mm, diameter), 1) + "cm3)";
@@ -130,9 +133,11 @@ void run(const Request& req, spdlog::logger& log) {
     }
     // A vase is recognised by its setting or, where the file has none (Cura
     // hands scripts no settings), by Z rising through its extrusions.
-    if (settings.spiral_vase || layers::z_motion(program).spiral())
+    const layers::ZMotion zm = layers::z_motion(program);
+    if (settings.spiral_vase || zm.spiral())
         throw Error(program.path, 0, "spiral vase mode is not supported: a vase is one continuous wall with no place for supports");
-    if (settings.sequential_printing)
+    // Also recognised without its setting: Z back at the bed after an object.
+    if (settings.sequential_printing || zm.restarts)
         throw Error(program.path, 0, "sequential printing (complete objects) is not supported: supports would be printed "
                                      "under objects that are finished first; slice with objects printed layer by layer");
     bool big = program.text.size() > 10'000'000;
@@ -202,10 +207,13 @@ void run(const Request& req, spdlog::logger& log) {
     header += "; scaffold: points = " + std::to_string(points.points.size()) + ", pillars = " + std::to_string(pillars) +
               ", bridges = " + std::to_string(scaffold.bridges.size()) + ", dropped points = " +
               std::to_string(scaffold.dropped_points.size()) + "\n";
+    // Volumetric E: mm^3 extruded, as mm of the spool's filament.
+    const double e_area = std::numbers::pi * settings.filament_diameter * settings.filament_diameter / 4;
+    spliced.filament_mm *= e_area / (std::numbers::pi * settings.spool_diameter * settings.spool_diameter / 4);
     header += "; scaffold: support filament used [mm] = " + fixed(spliced.filament_mm, 2) + "\n";
     std::vector<gcode::Edit> edits = std::move(spliced.edits);
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
-    update_totals(program, spliced.filament_mm, settings.filament_diameter, edits);
+    update_totals(program, spliced.filament_mm, settings.spool_diameter, edits);
     gcode::write_output(req.output, program, std::move(edits), format);
     time.lap("write");
 
@@ -216,7 +224,7 @@ void run(const Request& req, spdlog::logger& log) {
         time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
                                   before > 0 ? 100 * (after - before) / before : 0.0);
     }
-    double grams = filament_volume_cm3(spliced.filament_mm, settings.filament_diameter) * 1.24;  // PLA density
+    double grams = filament_volume_cm3(spliced.filament_mm, settings.spool_diameter) * 1.24;  // PLA density
     log.info("{} support points, {} bridges, {} pillars{}; support filament {:.1f} mm ({:.1f} g, {:.1f} % of the model){}",
              points.points.size(), scaffold.bridges.size(), pillars,
              scaffold.dropped_points.empty() ? "" : fmt::format(", {} points dropped", scaffold.dropped_points.size()),

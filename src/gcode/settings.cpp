@@ -146,6 +146,7 @@ double implied_filament_area(const gcode::Program& p, const Settings& s, double 
 // stated (Cura hands its scripts no settings), the common diameter nearest
 // to what the lines imply: 1.75, 2.85 or 3.0 mm, or volumetric E.
 void check_filament(const gcode::Program& p, const Lookup& l, Settings& s) {
+    s.spool_diameter = s.filament_diameter;
     double width = s.nozzle_diameter * 1.125;  // the slicers' usual automatic width
     double w = 0;
     bool pct = false;
@@ -169,6 +170,7 @@ void check_filament(const gcode::Program& p, const Lookup& l, Settings& s) {
         s.filament_note = "the model's own lines extrude " + fixed3(1 / implied) + " mm of E per mm^3 of bead, as " + best->name +
                           (stated ? " (the file states a " + fixed3(s.filament_diameter) + " mm diameter)" : " (no diameter stated)") +
                           ": support is extruded to match";
+    if (best != &choices[0]) s.spool_diameter = best->diameter;  // volumetric: the stated one, or the default
     s.filament_diameter = best->diameter;
 }
 

@@ -14,7 +14,10 @@ enum class Method { Scaffold, Pillars, None };
 struct Settings {
     // --- printer and material (from the slicer) ---
     double nozzle_diameter = 0.4;
-    double filament_diameter = 1.75;
+    double filament_diameter = 1.75;  // E's unit: 2/sqrt(pi) when E is volumetric (mm^3)
+    // Volumetric E: the filament the spool holds (the file's stated diameter,
+    // else 1.75 mm), for totals and reports in mm of filament.
+    double spool_diameter = 1.75;
     double layer_height = 0.2;
     double first_layer_height = 0.2;
     bool relative_e = false;          // the config's setting; the reader tracks M82/M83

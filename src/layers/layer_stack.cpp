@@ -130,6 +130,11 @@ double BedMesh::at(double x, double y) const {
     return (v(i, j) * (1 - tx) + v(i1, j) * tx) * (1 - ty) + (v(i, j1) * (1 - tx) + v(i1, j1) * tx) * ty;
 }
 
+// An extrusion within kRestartNear mm of the lowest after the print rose
+// kRestartRise mm above it starts another object from the bed: more than
+// bed levelling's offsets or one object's Z grid beside another's (KISSlicer).
+constexpr double kRestartNear = 0.15, kRestartRise = 3.0;
+
 ZMotion z_motion(const gcode::Program& program) {
     ZMotion z;
     for (const gcode::Move& m : program.moves) {
@@ -141,6 +146,7 @@ ZMotion z_motion(const gcode::Program& program) {
         } else if (m.z1 < m.z0 - kZEps) {
             ++z.falling;
         }
+        if (m.z1 < z.z_min + kRestartNear && z.z_max > z.z_min + kRestartRise) z.restarts = true;
         z.z_min = std::min(z.z_min, static_cast<double>(m.z1));
         z.z_max = std::max(z.z_max, static_cast<double>(m.z1));
     }
@@ -199,7 +205,15 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
         layer.last_extrusion_line = m.line;
         prev_last_extrusion = m.line;
     }
-    if (!any) throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
+    if (!any) {
+        // PrusaSlicer's Mach3 / Machinekit flavours extrude on the A axis.
+        if (auto it = program.config.find("gcode_flavor");
+            it != program.config.end() && (it->second == "mach3" || it->second == "machinekit"))
+            throw Error(program.path, 0, "no extrusions on E: the " + it->second +
+                                             " flavour extrudes on the A axis, which scaffold does not read; slice for a "
+                                             "printer firmware (Marlin, Klipper, RepRapFirmware...)");
+        throw Error(program.path, 0, "no extrusions found: this does not look like sliced G-code");
+    }
     stack.layers.back().end_line = static_cast<std::uint32_t>(program.lines.size());
     const std::vector<const gcode::LayerHint*> hints = hints_of(program, stack);
     if (stack.z_varies) nominal_heights(program, hints, stack);

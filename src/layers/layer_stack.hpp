@@ -52,6 +52,9 @@ struct ZMotion {
         return rising > 200 && rising * 4 > extrusions && falling * 20 < rising && rise < 1.5 * (z_max - z_min) + 1;
     }
     bool levelled() const { return !spiral() && rising + falling > 50 && (rising + falling) * 20 > extrusions; }
+    // Sequential printing (one object finished, then the next): extrusion
+    // back at the lowest height after rising well above it.
+    bool restarts = false;
 };
 ZMotion z_motion(const gcode::Program& program);
 

@@ -26,6 +26,8 @@ body() { printf 'G90\nM82\nG92 E0\nG1 Z0.2 F7800\nG1 X10 Y10\nG1 X20 Y10 E1 F180
 expect empty "in.gcode: the file is empty" "$tmp/in.gcode"
 printf 'G28\nG1 X10 Y10 F3000\n' > "$tmp/in.gcode"
 expect no-extrusions "no extrusions found" --method pillars "$tmp/in.gcode"
+printf 'G90\nM83\nG1 Z0.2 F7800\nG1 X10 Y10\nG1 X20 Y10 A1 F1800\n; gcode_flavor = mach3\n' > "$tmp/in.gcode"
+expect mach3-axis "the mach3 flavour extrudes on the A axis" "$tmp/in.gcode"
 printf 'GCDE\001\000\000\000binary' > "$tmp/in.gcode"
 expect binary-checksum "in.gcode: binary G-code: unknown checksum type 26978 at byte 8" "$tmp/in.gcode"
 printf 'GCDE\001\000\000\000\001\000\001\000' > "$tmp/in.gcode"

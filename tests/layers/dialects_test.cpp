@@ -216,6 +216,7 @@ TEST(Dialects, FilamentDiameterFromTheModelsLines) {
         EXPECT_TRUE(stated.settings.filament_note.empty()) << stated.settings.filament_note;
         Parsed bare = parse(without_config(g.str()));
         EXPECT_DOUBLE_EQ(bare.settings.filament_diameter, d);
+        EXPECT_DOUBLE_EQ(bare.settings.spool_diameter, d);
         EXPECT_EQ(bare.settings.filament_note.empty(), d == 1.75) << bare.settings.filament_note;
         // A stated diameter the lines contradict (2.65x the area) gives way.
         Parsed wrong = parse(g.str(), {{"filament_diameter", d == 1.75 ? "2.85" : "1.75"}});
@@ -230,6 +231,12 @@ TEST(Dialects, FilamentDiameterFromTheModelsLines) {
     }
     Parsed vol = parse(without_config(v.str()));
     EXPECT_NEAR(std::numbers::pi * vol.settings.filament_diameter * vol.settings.filament_diameter / 4, 1.0, 1e-9);
+    // Totals and reports stay in mm of the spool's filament: the stated one,
+    // else 1.75 mm.
+    EXPECT_DOUBLE_EQ(vol.settings.spool_diameter, 1.75);
+    Parsed vol285 = parse(without_config(v.str()), {{"filament_diameter", "2.85"}});
+    EXPECT_NEAR(std::numbers::pi * vol285.settings.filament_diameter * vol285.settings.filament_diameter / 4, 1.0, 1e-9);
+    EXPECT_DOUBLE_EQ(vol285.settings.spool_diameter, 2.85);
 }
 
 // RepRapFirmware's G10 P0 S195 R160 sets temperatures: no firmware retraction.
@@ -322,4 +329,24 @@ TEST(Dialects, SupportFollowsTheBedMeshOfALevelledFile) {
     ASSERT_FALSE(p.stack.mesh.empty());
     for (double x : {102.0, 120.0, 138.0})
         for (double y : {101.0, 109.0}) EXPECT_NEAR(p.stack.mesh.at(x, y), offset(x, y), 0.03) << x << "," << y;
+}
+
+// Sequential printing (complete objects) without its setting: one object up
+// to 4 mm, then the next from the bed. Objects side by side on their own Z
+// grids (KISSlicer) or a levelled bed's offsets never come back this far.
+TEST(Dialects, SequentialPrintingRecognisedByZ) {
+    SynthGcode seq(0.2, 0.45, 1.75);
+    for (int object = 0; object < 2; ++object)
+        for (int l = 1; l <= 20; ++l) {
+            seq.layer(0.2 * l);
+            seq.filled_rect(100 + 30 * object, 100, 110 + 30 * object, 110);
+        }
+    EXPECT_TRUE(layers::z_motion(parse(seq.str()).program).restarts);
+    SynthGcode together(0.2, 0.45, 1.75);
+    for (int l = 1; l <= 20; ++l) {
+        together.layer(0.2 * l);
+        together.filled_rect(100, 100, 110, 110);
+        together.filled_rect(130, 100, 140, 110);
+    }
+    EXPECT_FALSE(layers::z_motion(parse(together.str()).program).restarts);
 }
