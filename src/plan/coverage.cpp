@@ -79,14 +79,11 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
 
 void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, std::size_t first,
                  const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer) {
-    // The report's simple pillars (steer 0) do not lean in either.
-    const bool lean = steer > 0;
     Trunks trunks(stack, steer);
     trunks.add(scaffold.columns, stack, s);
     for (std::size_t i = first; i < points.points.size(); ++i) {
         const overhang::SupportPoint& p = points.points[i];
-        auto chain = lean ? support_point(p.x, p.y, p.layer, stack, obs, s, &trunks)
-                          : drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obs, s, &trunks);
+        auto chain = support_point(p.x, p.y, p.layer, stack, obs, s, &trunks);
         if (!chain) {
             scaffold.dropped_points.push_back(static_cast<int>(i));
             continue;

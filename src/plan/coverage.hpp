@@ -21,8 +21,8 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
 
 // Pillars under points.points[first..] added to a plan, standing on its
 // columns where they meet them (branching within `steer` mm, as planned);
-// with steer > 0 (the scaffold) a point no pillar reaches gets one leaning
-// in (lean_in).
+// a point no pillar reaches from under its sheet gets one leaning in
+// (support_point).
 void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, std::size_t first,
                  const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings, double steer);
 

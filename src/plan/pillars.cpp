@@ -6,6 +6,8 @@
 #include <numbers>
 #include <tuple>
 
+#include "plan/lean_in.hpp"
+
 namespace scaffold::plan {
 
 double loop_shift_limit(double h, const Settings& s) {
@@ -341,7 +343,8 @@ Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::Layer
     Scaffold out;
     for (int i : canonical_order(points)) {
         const auto& p = points.points[i];
-        auto chain = drop_pillar(p.x, p.y, p.layer, Top::Contact, stack, obstacles, settings, &trunks);
+        // Where no vertical pillar reaches a tip under the sheet, one leans in.
+        auto chain = support_point(p.x, p.y, p.layer, stack, obstacles, settings, &trunks);
         if (!chain) {
             out.dropped_points.push_back(i);
             continue;
