@@ -51,7 +51,8 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
 // rests on it (METHOD.md's rule (b), as the validator applies it to a loop's
 // sides): a vertex is anchored when model lies within `reach` of it, or of
 // a neighbour one side away (a side is shorter than a dangling end, so the
-// corner is held by the side before it); every side needs an anchored end,
+// corner is held by the side before it; not the first vertex, where the
+// path starts and ends); every side needs an anchored end,
 // and its unheld rest is then a dangling end shorter than the side. So a
 // loop lands on a sloping top, or across a slot narrower than about a side,
 // not only on a flat top that holds all of it.
@@ -68,7 +69,9 @@ bool loop_rests(const Obstacles& obs, int layer, double x, double y, double r, d
         any = any || held[k];
     }
     if (!any) return false;
-    auto anchored = [&](int k) { return held[k] || held[(k + 1) % n] || held[(k + n - 1) % n]; };
+    // The first vertex is where the printed path starts and ends: no corner
+    // there, nothing holds it but itself.
+    auto anchored = [&](int k) { return held[k] || (k > 0 && (held[(k + 1) % n] || held[k - 1])); };
     for (int k = 0; k < n; ++k)
         if (!anchored(k) && !anchored((k + 1) % n)) return false;
     return true;
