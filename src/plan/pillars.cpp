@@ -161,8 +161,13 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         // Stand on the model only where it holds the whole bottom loop (every
         // point of it within the self-supporting reach); model beside the
         // column, or under only part of it, is a collision: try elsewhere.
-        if (first || !loop_rests(obs, l, cx, cy, column_radius_at(proto, path.back().z, s), s.support_width,
-                                 stack.layers[top_layer].height * slope * 0.8))
+        // On the first layer only a loop held all round: what blocks the way
+        // there is mostly a skirt or brim line, which holds only what lies on it.
+        const double r_last = column_radius_at(proto, path.empty() ? layer.z : path.back().z, s);
+        const double rest_reach = stack.layers[top_layer].height * slope * 0.8;
+        if (first ||
+            (layer.on_bed ? !loop_held(obs, l, cx, cy, loop_shape(r_last, s.support_width).centre_radius, rest_reach)
+                          : !loop_rests(obs, l, cx, cy, r_last, s.support_width, rest_reach)))
             return false;
         proto.base = Base::Model;
         proto.z0 = layer.z;
