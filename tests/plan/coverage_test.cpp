@@ -7,6 +7,7 @@
 #include "plan/coverage.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "support/stacks.hpp"
 
 using namespace scaffold;
 
@@ -16,23 +17,14 @@ namespace {
 // along x at y 99.2..100.8), nothing under it; a speck far away keeps every
 // layer non-empty.
 layers::LayerStack floating_sheet() {
-    layers::LayerStack st;
-    for (int i = 0; i < 30; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        if (i > 0) l.beneath = {i - 1};
-        l.segments.push_back({10, 10, 10.5f, 10, 0.45f, gcode::Role::Perimeter, 0});
-        if (i == 20)
-            for (double y = 99.2; y < 100.9; y += 0.4)
-                l.segments.push_back({100, float(y), 110, float(y), 0.45f, gcode::Role::SolidInfill,
-                                      static_cast<std::uint32_t>(l.segments.size())});
-        st.layers.push_back(l);
-    }
-    st.bounds = {5, 5, 120, 120};
-    return st;
+    return test::stack_of(
+        30,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 10, 10, 10.5, 10, gcode::Role::Perimeter);
+            if (i == 20)
+                for (double y = 99.2; y < 100.9; y += 0.4) test::bead(l, 100, y, 110, y);
+        },
+        {5, 5, 120, 120});
 }
 
 // The sheet's overhang (layer 20), the only one.

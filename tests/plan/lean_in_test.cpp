@@ -6,6 +6,7 @@
 #include "plan/lean_in.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "support/stacks.hpp"
 
 using namespace scaffold;
 
@@ -13,21 +14,12 @@ namespace {
 
 // 0.2 mm layers to z 10, a wall (x 44..48.5, y 40..60) on every layer.
 layers::LayerStack walled() {
-    layers::LayerStack st;
-    for (int i = 0; i < 50; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        if (i > 0) l.beneath = {i - 1};
-        for (double x = 44.225; x < 48.5; x += 0.45)
-            l.segments.push_back({float(x), 40, float(x), 60, 0.45f, gcode::Role::SolidInfill,
-                                  static_cast<std::uint32_t>(l.segments.size())});
-        st.layers.push_back(l);
-    }
-    st.bounds = {30, 30, 70, 70};
-    return st;
+    return test::stack_of(
+        50,
+        [](int, layers::Layer& l) {
+            for (double x = 44.225; x < 48.5; x += 0.45) test::bead(l, x, 40, x, 60);
+        },
+        {30, 30, 70, 70});
 }
 
 }  // namespace

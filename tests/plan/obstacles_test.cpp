@@ -163,22 +163,15 @@ TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
 // dangling end shorter than a side), as on a real anchor's narrow groove.
 TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
     Settings s;
-    layers::LayerStack st;
-    for (int i = 0; i < 40; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        if (i < 20)
-            for (double y = 100.225; y < 120; y += 0.45)
-                if (std::abs(y - 110) > 0.5 + 0.225)
-                    l.segments.push_back({100, float(y), 120, float(y), 0.45f, gcode::Role::SolidInfill,
-                                          static_cast<std::uint32_t>(l.segments.size())});
-        if (l.segments.empty()) l.segments.push_back({0, 0, 0.5f, 0, 0.45f, gcode::Role::Perimeter, 0});
-        st.layers.push_back(l);
-    }
-    st.bounds = {-5, -5, 130, 130};
+    const layers::LayerStack st = test::stack_of(
+        40,
+        [](int i, layers::Layer& l) {
+            if (i < 20)
+                for (double y = 100.225; y < 120; y += 0.45)
+                    if (std::abs(y - 110) > 0.5 + 0.225) test::bead(l, 100, y, 120, y);
+            if (l.segments.empty()) test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+        },
+        {-5, -5, 130, 130});
     const plan::Obstacles obs(st, s);
     EXPECT_TRUE(obs.disc_clear(19, 110, 110, 0.4));  // the slot is open
     auto chain = plan::drop_pillar(110, 110, 39, plan::Top::Contact, st, obs, s);
