@@ -1,6 +1,7 @@
 #include "plan/obstacles.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace scaffold::plan {
@@ -80,47 +81,225 @@ bool any_in_row(const layers::BitGrid& g, int j, int i0, int i1) {
     return false;
 }
 
+// Rounding in disc_meets moves a cell's distance by some 1e-11 cells (the
+// coordinates are at most ~1e5 cells); the lookup keeps this much off the
+// edge, in cells and, for squared distances, relative to r squared.
+constexpr double kEdgeCells = 1e-6;
+
 }  // namespace
 
-int Obstacles::fast_disc(int layer, double x, double y, double r) const {
-    const std::int64_t key = std::llround(r * 1e6);
-    // The same radius comes many times in a row (one column, layer by layer).
-    if (!last_fast_ || last_key_ != key) {
-        last_fast_ = &fast_[key];
-        last_key_ = key;
+bool disc_meets(const layers::BitGrid& g, double x, double y, double r) {
+    // The planner asks this millions of times: whole rows of the disc a
+    // word at a time.
+    return any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); });
+}
+
+DiscLookup::DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layout layout)
+    : model_(model.data()), layers_(static_cast<int>(model.size())), r_(r), layout_(layout) {
+    if (model.empty() || model[0].width() == 0 || model[0].height() == 0) return;
+    const layers::BitGrid& g = model[0];
+    for (const layers::BitGrid& m : model)
+        if (!m.same_shape(g)) return;
+    const double rc = r / g.cell();
+    if (!(rc >= 0 && rc <= 512)) return;  // the offset tables grow with rc squared
+    nx_ = g.width();
+    ny_ = g.height();
+    wpr_ = g.words_per_row();
+    bands_ = (ny_ + kBlockRows - 1) / kBlockRows;
+    // A query point lies in its cell, [0, 1] x [0, 1] from the cell's corner
+    // (widened by kEdgeCells against rounding); a set cell (di, dj) cells
+    // away has its centre at least lo(di), lo(dj) and at most hi(di),
+    // hi(dj) away along each axis.
+    const double e = kEdgeCells, r2_hi = rc * rc + e * (1 + rc * rc), r2_lo = rc * rc - e * (1 + rc * rc);
+    auto lo = [e](int d) { return std::max(0.0, d - 0.5 - e); };
+    auto hi = [e](int d) { return d + 0.5 + e; };
+    for (int d = 0; lo(d) * lo(d) <= r2_hi; ++d) {
+        int h = 0;
+        while (lo(d) * lo(d) + lo(h + 1) * lo(h + 1) <= r2_hi) ++h;
+        maybe_.push_back(h);
     }
-    Grown& g = *last_fast_;
-    if (++g.asked < kFastAfter) return -1;
-    const layers::BitGrid& m = model_[layer];
-    if (g.surely_blocked.empty()) {
-        g.surely_blocked.resize(model_.size());
-        g.maybe_blocked.resize(model_.size());
+    for (int d = 0; hi(d) * hi(d) + hi(0) * hi(0) <= r2_lo; ++d) {
+        int h = 0;
+        while (hi(d) * hi(d) + hi(h + 1) * hi(h + 1) <= r2_lo) ++h;
+        sure_.push_back(h);
     }
-    const double half_diag = m.cell() * 0.7072;
-    if (g.maybe_blocked[layer].width() == 0) {
-        // Two rasters the size of the layer's: within a fixed budget, so
-        // the memory bound stays the one of the obstacles themselves.
-        const std::size_t bytes = 2 * m.words().size() * sizeof(std::uint64_t);
-        if (fast_bytes_ + bytes > kFastBudget) return -1;
-        fast_bytes_ += bytes;
-        g.maybe_blocked[layer] = m.dilated(r + half_diag);
-        g.surely_blocked[layer] = r > half_diag ? m.dilated(r - half_diag) : m;
+    if (layout_ == Layout::Columns) blocks_.resize(static_cast<std::size_t>((layers_ + 63) / 64) * bands_);
+    else rasters_.resize(layers_);
+    usable_ = true;
+}
+
+void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const {
+    const layers::BitGrid& g = model_[layer];
+    const int D = static_cast<int>(maybe_.size()) - 1;
+    const std::size_t W = static_cast<std::size_t>(wpr_);
+    std::fill(maybe, maybe + (j1 - j0 + 1) * W, 0);
+    std::fill(surely, surely + (j1 - j0 + 1) * W, 0);
+    // Each source row dilated sideways, one cell at a time, as far as its
+    // distance to an output row allows; then or-ed into those rows.
+    std::vector<std::uint64_t> dil(static_cast<std::size_t>(maybe_[0] + 1) * W);
+    for (int js = std::max(0, j0 - D); js <= std::min(ny_ - 1, j1 + D); ++js) {
+        const std::uint64_t* src = g.row_words(js);
+        if (std::all_of(src, src + W, [](std::uint64_t w) { return w == 0; })) continue;
+        const int hmax = maybe_[js < j0 ? j0 - js : (js > j1 ? js - j1 : 0)];
+        std::copy(src, src + W, dil.begin());
+        for (int h = 1; h <= hmax; ++h) {
+            const std::uint64_t* in = &dil[(h - 1) * W];
+            std::uint64_t* out = &dil[h * W];
+            for (std::size_t w = 0; w < W; ++w) {
+                const std::uint64_t prev = w > 0 ? in[w - 1] : 0, next = w + 1 < W ? in[w + 1] : 0;
+                out[w] = in[w] | in[w] << 1 | prev >> 63 | in[w] >> 1 | next << 63;
+            }
+        }
+        for (int jo = std::max(j0, js - D); jo <= std::min(j1, js + D); ++jo) {
+            const int d = std::abs(jo - js);
+            const std::size_t at = static_cast<std::size_t>(jo - j0) * W;
+            const std::uint64_t* m = &dil[maybe_[d] * W];
+            for (std::size_t w = 0; w < W; ++w) maybe[at + w] |= m[w];
+            if (d < static_cast<int>(sure_.size())) {
+                const std::uint64_t* s = &dil[sure_[d] * W];
+                for (std::size_t w = 0; w < W; ++w) surely[at + w] |= s[w];
+            }
+        }
     }
-    // The query lies within half a diagonal of its cell's centre.
-    int i = m.col(x), j = m.row(y);
-    if (i < 0 || j < 0 || i >= m.width() || j >= m.height()) return -1;
-    if (r > half_diag && g.surely_blocked[layer].get(i, j)) return 0;
-    if (!g.maybe_blocked[layer].get(i, j)) return 1;
+}
+
+int DiscLookup::lookup(int layer, double x, double y, std::size_t budget, std::size_t& used) {
+    LayerRange unused;
+    return lookup(layer, x, y, budget, used, unused);
+}
+
+int DiscLookup::lookup(int layer, double x, double y, std::size_t budget, std::size_t& used, LayerRange& clear) {
+    clear = {};
+    if (!usable_ || layer < 0 || layer >= layers_) return -1;
+    // A column is asked layer by layer at the same point.
+    if (x != last_x_ || y != last_y_) {
+        last_x_ = x;
+        last_y_ = y;
+        last_i_ = model_[0].col(x);
+        last_j_ = model_[0].row(y);
+    }
+    const int i = last_i_, j = last_j_;
+    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
+    return layout_ == Layout::Columns ? lookup_columns(layer, i, j, budget, used, &clear)
+                                      : lookup_per_layer(layer, i, j, budget, used);
+}
+
+int DiscLookup::lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear) {
+    const int band = j / kBlockRows;
+    Block& b = blocks_[static_cast<std::size_t>(layer >> 6) * bands_ + band];
+    const std::uint64_t bit = std::uint64_t{1} << (layer & 63);
+    if (!(b.built & bit)) {
+        const std::size_t cells = static_cast<std::size_t>(kBlockRows) * nx_;
+        if (b.bits.empty()) {
+            if (used + cells * 2 * sizeof(std::uint64_t) > budget) return -1;
+            used += cells * 2 * sizeof(std::uint64_t);
+            b.bits.assign(cells * 2, 0);
+        }
+        const int j0 = band * kBlockRows, j1 = std::min(ny_ - 1, j0 + kBlockRows - 1);
+        const std::size_t W = static_cast<std::size_t>(wpr_);
+        scratch_.resize(2 * kBlockRows * W);
+        grow_rows(layer, j0, j1, scratch_.data(), scratch_.data() + kBlockRows * W);
+        // Each set bit of the two rasters into its cell's word.
+        for (int k = 0; k < 2; ++k)
+            for (int jo = j0; jo <= j1; ++jo) {
+                const std::uint64_t* row = &scratch_[(k * kBlockRows + (jo - j0)) * W];
+                std::uint64_t* cells_of_row = &b.bits[static_cast<std::size_t>(jo - j0) * nx_ * 2];
+                for (std::size_t w = 0; w < W; ++w)
+                    for (std::uint64_t v = row[w]; v; v &= v - 1) {
+                        const int c = static_cast<int>(w * 64) + std::countr_zero(v);
+                        if (c >= nx_) break;
+                        cells_of_row[static_cast<std::size_t>(c) * 2 + k] |= bit;
+                    }
+            }
+        b.built |= bit;
+    }
+    const std::uint64_t* cell = &b.bits[(static_cast<std::size_t>(j - band * kBlockRows) * nx_ + i) * 2];
+    if (!(cell[0] & bit)) {
+        // The run of built layers without a maybe bit that holds this one.
+        const std::uint64_t free = b.built & ~cell[0];
+        const int k = layer & 63;
+        const int up = std::min(std::countr_zero(~free >> k), 64 - k) - 1;
+        const int down = std::min(std::countl_zero(~free << (63 - k)), k + 1) - 1;
+        clear->lo = layer - down;
+        clear->hi = layer + up;
+        return 1;
+    }
+    if (cell[1] & bit) return 0;
     return -1;
+}
+
+int DiscLookup::lookup_per_layer(int layer, int i, int j, std::size_t budget, std::size_t& used) {
+    Rasters& r = rasters_[layer];
+    const std::size_t W = static_cast<std::size_t>(wpr_);
+    if (r.maybe.empty()) {
+        const std::size_t words = W * ny_;
+        if (used + 2 * words * sizeof(std::uint64_t) > budget) return -1;
+        used += 2 * words * sizeof(std::uint64_t);
+        r.maybe.resize(words);
+        r.surely.resize(words);
+        for (int j0 = 0; j0 < ny_; j0 += kBlockRows) {
+            const int j1 = std::min(ny_ - 1, j0 + kBlockRows - 1);
+            grow_rows(layer, j0, j1, &r.maybe[j0 * W], &r.surely[j0 * W]);
+        }
+    }
+    const std::size_t w = static_cast<std::size_t>(j) * W + (i >> 6);
+    if (!((r.maybe[w] >> (i & 63)) & 1)) return 1;
+    if ((r.surely[w] >> (i & 63)) & 1) return 0;
+    return -1;
+}
+
+int Obstacles::fast_disc(int layer, double x, double y, double r) const {
+    if (!(r >= 0)) return -1;  // and not NaN: a map key
+    // A disc inside one that misses the model misses it too, and one around
+    // a disc that meets it meets it (disc_meets' rows and spans grow with r;
+    // the lookups' maybe and surely bits grow with it too, so the nearest
+    // radius each way is the one to ask): a column's lookup, whose words
+    // the column has at hand, answers for the other radii asked along it
+    // (a tip's taper, the steps aside).
+    auto up = std::lower_bound(columns_.begin(), columns_.end(), r,
+                               [](const DiscLookup* c, double v) { return c->radius() < v; });
+    if (up != columns_.end()) {
+        DiscLookup::LayerRange clear;
+        const int a = (*up)->lookup(layer, x, y, kFastBudget, fast_bytes_, clear);
+        if (a == 1) run_ = {x, y, (*up)->radius(), clear};
+        if (a == 1 || (a == 0 && (*up)->radius() == r)) return a;
+    }
+    if (up != columns_.begin() && (*std::prev(up))->lookup(layer, x, y, kFastBudget, fast_bytes_) == 0) return 0;
+    // The same radius comes many times in a row (one column, layer by layer).
+    if (!last_fast_ || last_r_ != r) {
+        last_fast_ = &fast_[r];
+        last_r_ = r;
+    }
+    Fast& f = *last_fast_;
+    if (!f.lookup) {
+        // Which layout: a radius asked on many layers is a column's.
+        if (f.layers.empty()) f.layers.assign(model_.size(), 0);
+        if (!f.layers[layer]) {
+            f.layers[layer] = 1;
+            ++f.distinct_layers;
+        }
+        if (++f.asked < kFastAfter) return -1;
+        const bool column = f.distinct_layers >= kColumnsFrom && columns_.size() < kMaxColumns;
+        f.lookup = std::make_unique<DiscLookup>(model_, r, column ? DiscLookup::Layout::Columns : DiscLookup::Layout::PerLayer);
+        if (column) {
+            columns_.push_back(f.lookup.get());
+            std::sort(columns_.begin(), columns_.end(),
+                      [](const DiscLookup* a, const DiscLookup* b) { return a->radius() < b->radius(); });
+        }
+        f.layers = {};
+    }
+    return f.lookup->lookup(layer, x, y, kFastBudget, fast_bytes_);
 }
 
 bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
+    if (x == run_.x && y == run_.y && r <= run_.r && layer >= run_.layers.lo && layer <= run_.layers.hi) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
-    // The planner asks this millions of times: whole rows of the disc a
-    // word at a time.
-    const layers::BitGrid& g = model_[layer];
-    return !any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); });
+    return !disc_meets(model_[layer], x, y, r);
+}
+
+bool Obstacles::disc_clear_exact(int layer, double x, double y, double r) const {
+    return layer < 0 || layer >= layer_count() || !disc_meets(model_[layer], x, y, r);
 }
 
 bool Obstacles::column_clear(double x, double y, double r, double z_lo, double z_hi) const {
