@@ -119,7 +119,8 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 }
             }
         }
-        if (!obs.disc_clear(l, cx, cy, need) && !first) {
+        bool clear = obs.disc_clear(l, cx, cy, need);
+        if (!clear && !first) {
             // Step aside by what the loop below still holds, preferring the
             // direction with the most room; fixed order breaks ties.
             // A loop may shift by the self-supporting reach plus half its
@@ -137,9 +138,10 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 cx += step * std::cos(best * std::numbers::pi / 4);
                 cy += step * std::sin(best * std::numbers::pi / 4);
                 wander += step;
+                clear = obs.disc_clear(l, cx, cy, need);
             }
         }
-        if (obs.disc_clear(l, cx, cy, need)) {
+        if (clear) {
             path.push_back({cx, cy, layer.z});
             height_above = layer.height;
             continue;
