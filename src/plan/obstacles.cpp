@@ -184,6 +184,56 @@ int DiscLookup::lookup(int layer, double x, double y, std::size_t budget, std::s
                                       : lookup_per_layer(layer, i, j, budget, used);
 }
 
+namespace {
+
+// The 8 x 8 bit matrix in x (bit 8 r + c is row r, column c) transposed.
+std::uint64_t transpose8(std::uint64_t x) {
+    std::uint64_t t = (x ^ (x >> 7)) & 0x00AA00AA00AA00AAull;
+    x ^= t ^ (t << 7);
+    t = (x ^ (x >> 14)) & 0x0000CCCC0000CCCCull;
+    x ^= t ^ (t << 14);
+    t = (x ^ (x >> 28)) & 0x00000000F0F0F0F0ull;
+    x ^= t ^ (t << 28);
+    return x;
+}
+
+}  // namespace
+
+void DiscLookup::build_group(Block& b, int first, int band) {
+    const int j0 = band * kBlockRows, j1 = std::min(ny_ - 1, j0 + kBlockRows - 1), rows = j1 - j0 + 1;
+    const int n = std::min(kGroup, layers_ - first);
+    const std::size_t W = static_cast<std::size_t>(wpr_), plane = static_cast<std::size_t>(kBlockRows) * W;
+    // Per layer of the group: its maybe rows, then its surely rows.
+    scratch_.assign(2 * kGroup * plane, 0);
+    for (int g = 0; g < n; ++g) grow_rows(first + g, j0, j1, &scratch_[2 * g * plane], &scratch_[(2 * g + 1) * plane]);
+    // Eight cells by the group's eight layers at a time, transposed into
+    // one byte of each cell's word.
+    const int lane = first & 63;
+    for (int k = 0; k < 2; ++k)
+        for (int jo = 0; jo < rows; ++jo) {
+            std::uint64_t* cells = &b.bits[static_cast<std::size_t>(jo) * nx_ * 2];
+            const std::uint64_t* in[kGroup];
+            for (int g = 0; g < kGroup; ++g) in[g] = &scratch_[(2 * g + k) * plane + jo * W];
+            for (std::size_t w = 0; w < W; ++w) {
+                std::uint64_t any = 0;
+                for (int g = 0; g < kGroup; ++g) any |= in[g][w];
+                if (!any) continue;
+                for (int c8 = 0; c8 < 64; c8 += 8) {
+                    std::uint64_t m = 0;
+                    for (int g = 0; g < kGroup; ++g) m |= ((in[g][w] >> c8) & 0xFF) << (8 * g);
+                    if (!m) continue;
+                    m = transpose8(m);  // byte c: cell c's layers
+                    for (int c = 0; c < 8; ++c) {
+                        const int cell = static_cast<int>(w * 64) + c8 + c;
+                        const std::uint64_t byte = (m >> (8 * c)) & 0xFF;
+                        if (byte && cell < nx_) cells[static_cast<std::size_t>(cell) * 2 + k] |= byte << lane;
+                    }
+                }
+            }
+        }
+    b.built |= ((std::uint64_t{1} << n) - 1) << lane;
+}
+
 int DiscLookup::lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear) {
     const int band = j / kBlockRows;
     Block& b = blocks_[static_cast<std::size_t>(layer >> 6) * bands_ + band];
@@ -195,23 +245,7 @@ int DiscLookup::lookup_columns(int layer, int i, int j, std::size_t budget, std:
             used += cells * 2 * sizeof(std::uint64_t);
             b.bits.assign(cells * 2, 0);
         }
-        const int j0 = band * kBlockRows, j1 = std::min(ny_ - 1, j0 + kBlockRows - 1);
-        const std::size_t W = static_cast<std::size_t>(wpr_);
-        scratch_.resize(2 * kBlockRows * W);
-        grow_rows(layer, j0, j1, scratch_.data(), scratch_.data() + kBlockRows * W);
-        // Each set bit of the two rasters into its cell's word.
-        for (int k = 0; k < 2; ++k)
-            for (int jo = j0; jo <= j1; ++jo) {
-                const std::uint64_t* row = &scratch_[(k * kBlockRows + (jo - j0)) * W];
-                std::uint64_t* cells_of_row = &b.bits[static_cast<std::size_t>(jo - j0) * nx_ * 2];
-                for (std::size_t w = 0; w < W; ++w)
-                    for (std::uint64_t v = row[w]; v; v &= v - 1) {
-                        const int c = static_cast<int>(w * 64) + std::countr_zero(v);
-                        if (c >= nx_) break;
-                        cells_of_row[static_cast<std::size_t>(c) * 2 + k] |= bit;
-                    }
-            }
-        b.built |= bit;
+        build_group(b, layer & ~(kGroup - 1), band);
     }
     const std::uint64_t* cell = &b.bits[(static_cast<std::size_t>(j - band * kBlockRows) * nx_ + i) * 2];
     if (!(cell[0] & bit)) {
@@ -279,7 +313,11 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
             ++f.distinct_layers;
         }
         if (++f.asked < kFastAfter) return -1;
-        const bool column = f.distinct_layers >= kColumnsFrom && columns_.size() < kMaxColumns;
+        // Columns also for a radius above all the columns' (a foot's flare, a
+        // raft), asked on few layers but at the cells the columns are: the
+        // nearest larger column answers for the radii below it.
+        const bool wide = columns_.empty() || r > columns_.back()->radius();
+        const bool column = (f.distinct_layers >= kColumnsFrom || wide) && columns_.size() < kMaxColumns;
         f.lookup = std::make_unique<DiscLookup>(model_, r, column ? DiscLookup::Layout::Columns : DiscLookup::Layout::PerLayer);
         if (column) {
             columns_.push_back(f.lookup.get());

@@ -60,6 +60,9 @@ private:
     // Rows j0..j1 (at most kBlockRows) of the layer's raster grown by the
     // maybe_ and the sure_ offsets, into maybe and surely (zeroed here).
     void grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const;
+    // Fills layers first.. first + kGroup - 1 (those that exist) of a Columns block.
+    static constexpr int kGroup = 8;
+    void build_group(Block& b, int first, int band);
     int lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear);
     int lookup_per_layer(int layer, int i, int j, std::size_t budget, std::size_t& used);
 
@@ -138,7 +141,7 @@ private:
         DiscLookup::LayerRange layers;
     };
     mutable ClearRun run_;
-    static constexpr std::size_t kMaxColumns = 4;
+    static constexpr std::size_t kMaxColumns = 6;
 };
 
 }  // namespace scaffold::plan
