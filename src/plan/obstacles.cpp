@@ -51,10 +51,12 @@ namespace {
 // Calls f(j, i0, i1) for every row j of cells whose centres lie within r of
 // (x, y), i0..i1 being that row's cells in the disc; stops early when f
 // returns true. Returns whether it stopped.
-template <class F>
-bool any_row_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f) {
+// Rows for which skip(j) is true are passed over.
+template <class F, class Skip>
+bool any_row_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f, Skip&& skip) {
     int j0 = g.row(y - r), j1 = g.row(y + r);
     for (int j = j0; j <= j1; ++j) {
+        if (skip(j)) continue;
         double dy = g.cy(j) - y;
         if (std::abs(dy) > r) continue;
         double hw = std::sqrt(r * r - dy * dy);
@@ -90,8 +92,12 @@ constexpr double kEdgeCells = 1e-6;
 
 bool disc_meets(const layers::BitGrid& g, double x, double y, double r) {
     // The planner asks this millions of times: whole rows of the disc a
-    // word at a time.
-    return any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); });
+    // word at a time. A row with no set cell in the disc's bounding box
+    // (a cell wider each way than rounding could move the disc's span) has
+    // none in the span either: its square root and divisions are skipped.
+    const int b0 = g.col(x - r) - 1, b1 = g.col(x + r) + 1;
+    return any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); },
+                           [&](int j) { return !any_in_row(g, j, b0, b1); });
 }
 
 DiscLookup::DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layout layout)
@@ -139,14 +145,22 @@ void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std:
     std::vector<std::uint64_t> dil(static_cast<std::size_t>(maybe_[0] + 1) * W);
     for (int js = std::max(0, j0 - D); js <= std::min(ny_ - 1, j1 + D); ++js) {
         const std::uint64_t* src = g.row_words(js);
-        if (std::all_of(src, src + W, [](std::uint64_t w) { return w == 0; })) continue;
+        // Only the words the row's cells can reach: those it has set, and
+        // as many words each way as the reach spans.
+        std::size_t wa = 0, wb = W;
+        while (wa < W && !src[wa]) ++wa;
+        if (wa == W) continue;
+        while (!src[wb - 1]) --wb;
         const int hmax = maybe_[js < j0 ? j0 - js : (js > j1 ? js - j1 : 0)];
-        std::copy(src, src + W, dil.begin());
+        const std::size_t reach = static_cast<std::size_t>(hmax + 63) / 64;
+        wa = wa > reach ? wa - reach : 0;
+        wb = std::min(W, wb + reach);
+        std::copy(src + wa, src + wb, dil.begin() + static_cast<std::ptrdiff_t>(wa));
         for (int h = 1; h <= hmax; ++h) {
             const std::uint64_t* in = &dil[(h - 1) * W];
             std::uint64_t* out = &dil[h * W];
-            for (std::size_t w = 0; w < W; ++w) {
-                const std::uint64_t prev = w > 0 ? in[w - 1] : 0, next = w + 1 < W ? in[w + 1] : 0;
+            for (std::size_t w = wa; w < wb; ++w) {
+                const std::uint64_t prev = w > wa ? in[w - 1] : 0, next = w + 1 < wb ? in[w + 1] : 0;
                 out[w] = in[w] | in[w] << 1 | prev >> 63 | in[w] >> 1 | next << 63;
             }
         }
@@ -154,10 +168,10 @@ void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std:
             const int d = std::abs(jo - js);
             const std::size_t at = static_cast<std::size_t>(jo - j0) * W;
             const std::uint64_t* m = &dil[maybe_[d] * W];
-            for (std::size_t w = 0; w < W; ++w) maybe[at + w] |= m[w];
+            for (std::size_t w = wa; w < wb; ++w) maybe[at + w] |= m[w];
             if (d < static_cast<int>(sure_.size())) {
                 const std::uint64_t* s = &dil[sure_[d] * W];
-                for (std::size_t w = 0; w < W; ++w) surely[at + w] |= s[w];
+                for (std::size_t w = wa; w < wb; ++w) surely[at + w] |= s[w];
             }
         }
     }
