@@ -321,9 +321,9 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
     Fast& f = *last_fast_;
     if (!f.lookup) {
         // Which layout: a radius asked on many layers is a column's.
-        if (f.layers.empty()) f.layers.assign(model_.size(), 0);
+        if (f.layers.empty()) f.layers.assign(model_.size(), false);
         if (!f.layers[layer]) {
-            f.layers[layer] = 1;
+            f.layers[layer] = true;
             ++f.distinct_layers;
         }
         if (++f.asked < kFastAfter) return -1;

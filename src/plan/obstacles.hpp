@@ -28,9 +28,9 @@ bool disc_meets(const layers::BitGrid& g, double x, double y, double r);
 //   layer by layer down its column): the bits of 64 layers of a cell in one
 //   word, so a column walked down reads the same words (rasters a layer
 //   apart are far apart in memory). Blocks of 64 rows x 64 layers, filled
-//   one layer at a time.
-// - PerLayer, for a radius asked on a few layers (a foot's flare, a raft):
-//   two rasters per layer asked, whole.
+//   eight layers at a time.
+// - PerLayer, for a radius asked on a few layers (a step of a tip's
+//   taper): two rasters per layer asked, whole.
 class DiscLookup {
 public:
     enum class Layout { Columns, PerLayer };
@@ -116,7 +116,7 @@ private:
     // radius answers most queries with one bit; the rest take the exact test.
     struct Fast {
         long long asked = 0;
-        std::vector<char> layers;            // which layers were asked, until the lookup is built
+        std::vector<bool> layers;            // which layers were asked, until the lookup is built
         int distinct_layers = 0;
         std::unique_ptr<DiscLookup> lookup;  // built after kFastAfter queries
     };
