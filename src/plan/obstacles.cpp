@@ -1,6 +1,7 @@
 #include "plan/obstacles.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace scaffold::plan {
@@ -50,10 +51,12 @@ namespace {
 // Calls f(j, i0, i1) for every row j of cells whose centres lie within r of
 // (x, y), i0..i1 being that row's cells in the disc; stops early when f
 // returns true. Returns whether it stopped.
-template <class F>
-bool any_row_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f) {
+// Rows for which skip(j) is true are passed over.
+template <class F, class Skip>
+bool any_row_in_disc(const layers::BitGrid& g, double x, double y, double r, F&& f, Skip&& skip) {
     int j0 = g.row(y - r), j1 = g.row(y + r);
     for (int j = j0; j <= j1; ++j) {
+        if (skip(j)) continue;
         double dy = g.cy(j) - y;
         if (std::abs(dy) > r) continue;
         double hw = std::sqrt(r * r - dy * dy);
@@ -80,47 +83,275 @@ bool any_in_row(const layers::BitGrid& g, int j, int i0, int i1) {
     return false;
 }
 
+// Rounding in disc_meets moves a cell's distance by some 1e-11 cells (the
+// coordinates are at most ~1e5 cells); the lookup keeps this much off the
+// edge, in cells and, for squared distances, relative to r squared.
+constexpr double kEdgeCells = 1e-6;
+
 }  // namespace
 
-int Obstacles::fast_disc(int layer, double x, double y, double r) const {
-    const std::int64_t key = std::llround(r * 1e6);
-    // The same radius comes many times in a row (one column, layer by layer).
-    if (!last_fast_ || last_key_ != key) {
-        last_fast_ = &fast_[key];
-        last_key_ = key;
+bool disc_meets(const layers::BitGrid& g, double x, double y, double r) {
+    // The planner asks this millions of times: whole rows of the disc a
+    // word at a time. A row with no set cell in the disc's bounding box
+    // (a cell wider each way than rounding could move the disc's span) has
+    // none in the span either: its square root and divisions are skipped.
+    const int b0 = g.col(x - r) - 1, b1 = g.col(x + r) + 1;
+    return any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); },
+                           [&](int j) { return !any_in_row(g, j, b0, b1); });
+}
+
+DiscLookup::DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layout layout)
+    : model_(model.data()), layers_(static_cast<int>(model.size())), r_(r), layout_(layout) {
+    if (model.empty() || model[0].width() == 0 || model[0].height() == 0) return;
+    const layers::BitGrid& g = model[0];
+    for (const layers::BitGrid& m : model)
+        if (!m.same_shape(g)) return;
+    const double rc = r / g.cell();
+    if (!(rc >= 0 && rc <= 512)) return;  // the offset tables grow with rc squared
+    nx_ = g.width();
+    ny_ = g.height();
+    wpr_ = g.words_per_row();
+    bands_ = (ny_ + kBlockRows - 1) / kBlockRows;
+    // A query point lies in its cell, [0, 1] x [0, 1] from the cell's corner
+    // (widened by kEdgeCells against rounding); a set cell (di, dj) cells
+    // away has its centre at least lo(di), lo(dj) and at most hi(di),
+    // hi(dj) away along each axis.
+    const double e = kEdgeCells, r2_hi = rc * rc + e * (1 + rc * rc), r2_lo = rc * rc - e * (1 + rc * rc);
+    auto lo = [e](int d) { return std::max(0.0, d - 0.5 - e); };
+    auto hi = [e](int d) { return d + 0.5 + e; };
+    for (int d = 0; lo(d) * lo(d) <= r2_hi; ++d) {
+        int h = 0;
+        while (lo(d) * lo(d) + lo(h + 1) * lo(h + 1) <= r2_hi) ++h;
+        maybe_.push_back(h);
     }
-    Grown& g = *last_fast_;
-    if (++g.asked < kFastAfter) return -1;
-    const layers::BitGrid& m = model_[layer];
-    if (g.surely_blocked.empty()) {
-        g.surely_blocked.resize(model_.size());
-        g.maybe_blocked.resize(model_.size());
+    for (int d = 0; hi(d) * hi(d) + hi(0) * hi(0) <= r2_lo; ++d) {
+        int h = 0;
+        while (hi(d) * hi(d) + hi(h + 1) * hi(h + 1) <= r2_lo) ++h;
+        sure_.push_back(h);
     }
-    const double half_diag = m.cell() * 0.7072;
-    if (g.maybe_blocked[layer].width() == 0) {
-        // Two rasters the size of the layer's: within a fixed budget, so
-        // the memory bound stays the one of the obstacles themselves.
-        const std::size_t bytes = 2 * m.words().size() * sizeof(std::uint64_t);
-        if (fast_bytes_ + bytes > kFastBudget) return -1;
-        fast_bytes_ += bytes;
-        g.maybe_blocked[layer] = m.dilated(r + half_diag);
-        g.surely_blocked[layer] = r > half_diag ? m.dilated(r - half_diag) : m;
+    if (layout_ == Layout::Columns) blocks_.resize(static_cast<std::size_t>((layers_ + 63) / 64) * bands_);
+    else rasters_.resize(layers_);
+    usable_ = true;
+}
+
+void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const {
+    const layers::BitGrid& g = model_[layer];
+    const int D = static_cast<int>(maybe_.size()) - 1;
+    const std::size_t W = static_cast<std::size_t>(wpr_);
+    std::fill(maybe, maybe + (j1 - j0 + 1) * W, 0);
+    std::fill(surely, surely + (j1 - j0 + 1) * W, 0);
+    // Each source row dilated sideways, one cell at a time, as far as its
+    // distance to an output row allows; then or-ed into those rows.
+    std::vector<std::uint64_t> dil(static_cast<std::size_t>(maybe_[0] + 1) * W);
+    for (int js = std::max(0, j0 - D); js <= std::min(ny_ - 1, j1 + D); ++js) {
+        const std::uint64_t* src = g.row_words(js);
+        // Only the words the row's cells can reach: those it has set, and
+        // as many words each way as the reach spans.
+        std::size_t wa = 0, wb = W;
+        while (wa < W && !src[wa]) ++wa;
+        if (wa == W) continue;
+        while (!src[wb - 1]) --wb;
+        const int hmax = maybe_[js < j0 ? j0 - js : (js > j1 ? js - j1 : 0)];
+        const std::size_t reach = static_cast<std::size_t>(hmax + 63) / 64;
+        wa = wa > reach ? wa - reach : 0;
+        wb = std::min(W, wb + reach);
+        std::copy(src + wa, src + wb, dil.begin() + static_cast<std::ptrdiff_t>(wa));
+        for (int h = 1; h <= hmax; ++h) {
+            const std::uint64_t* in = &dil[(h - 1) * W];
+            std::uint64_t* out = &dil[h * W];
+            for (std::size_t w = wa; w < wb; ++w) {
+                const std::uint64_t prev = w > wa ? in[w - 1] : 0, next = w + 1 < wb ? in[w + 1] : 0;
+                out[w] = in[w] | in[w] << 1 | prev >> 63 | in[w] >> 1 | next << 63;
+            }
+        }
+        for (int jo = std::max(j0, js - D); jo <= std::min(j1, js + D); ++jo) {
+            const int d = std::abs(jo - js);
+            const std::size_t at = static_cast<std::size_t>(jo - j0) * W;
+            const std::uint64_t* m = &dil[maybe_[d] * W];
+            for (std::size_t w = wa; w < wb; ++w) maybe[at + w] |= m[w];
+            if (d < static_cast<int>(sure_.size())) {
+                const std::uint64_t* s = &dil[sure_[d] * W];
+                for (std::size_t w = wa; w < wb; ++w) surely[at + w] |= s[w];
+            }
+        }
     }
-    // The query lies within half a diagonal of its cell's centre.
-    int i = m.col(x), j = m.row(y);
-    if (i < 0 || j < 0 || i >= m.width() || j >= m.height()) return -1;
-    if (r > half_diag && g.surely_blocked[layer].get(i, j)) return 0;
-    if (!g.maybe_blocked[layer].get(i, j)) return 1;
+}
+
+int DiscLookup::lookup(int layer, double x, double y, std::size_t budget, std::size_t& used) {
+    LayerRange unused;
+    return lookup(layer, x, y, budget, used, unused);
+}
+
+int DiscLookup::lookup(int layer, double x, double y, std::size_t budget, std::size_t& used, LayerRange& clear) {
+    clear = {};
+    if (!usable_ || layer < 0 || layer >= layers_) return -1;
+    // A column is asked layer by layer at the same point.
+    if (x != last_x_ || y != last_y_) {
+        last_x_ = x;
+        last_y_ = y;
+        last_i_ = model_[0].col(x);
+        last_j_ = model_[0].row(y);
+    }
+    const int i = last_i_, j = last_j_;
+    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
+    return layout_ == Layout::Columns ? lookup_columns(layer, i, j, budget, used, &clear)
+                                      : lookup_per_layer(layer, i, j, budget, used);
+}
+
+namespace {
+
+// The 8 x 8 bit matrix in x (bit 8 r + c is row r, column c) transposed.
+std::uint64_t transpose8(std::uint64_t x) {
+    std::uint64_t t = (x ^ (x >> 7)) & 0x00AA00AA00AA00AAull;
+    x ^= t ^ (t << 7);
+    t = (x ^ (x >> 14)) & 0x0000CCCC0000CCCCull;
+    x ^= t ^ (t << 14);
+    t = (x ^ (x >> 28)) & 0x00000000F0F0F0F0ull;
+    x ^= t ^ (t << 28);
+    return x;
+}
+
+}  // namespace
+
+void DiscLookup::build_group(Block& b, int first, int band) {
+    const int j0 = band * kBlockRows, j1 = std::min(ny_ - 1, j0 + kBlockRows - 1), rows = j1 - j0 + 1;
+    const int n = std::min(kGroup, layers_ - first);
+    const std::size_t W = static_cast<std::size_t>(wpr_), plane = static_cast<std::size_t>(kBlockRows) * W;
+    // Per layer of the group: its maybe rows, then its surely rows.
+    scratch_.assign(2 * kGroup * plane, 0);
+    for (int g = 0; g < n; ++g) grow_rows(first + g, j0, j1, &scratch_[2 * g * plane], &scratch_[(2 * g + 1) * plane]);
+    // Eight cells by the group's eight layers at a time, transposed into
+    // one byte of each cell's word.
+    const int lane = first & 63;
+    for (int k = 0; k < 2; ++k)
+        for (int jo = 0; jo < rows; ++jo) {
+            std::uint64_t* cells = &b.bits[static_cast<std::size_t>(jo) * nx_ * 2];
+            const std::uint64_t* in[kGroup];
+            for (int g = 0; g < kGroup; ++g) in[g] = &scratch_[(2 * g + k) * plane + jo * W];
+            for (std::size_t w = 0; w < W; ++w) {
+                std::uint64_t any = 0;
+                for (int g = 0; g < kGroup; ++g) any |= in[g][w];
+                if (!any) continue;
+                for (int c8 = 0; c8 < 64; c8 += 8) {
+                    std::uint64_t m = 0;
+                    for (int g = 0; g < kGroup; ++g) m |= ((in[g][w] >> c8) & 0xFF) << (8 * g);
+                    if (!m) continue;
+                    m = transpose8(m);  // byte c: cell c's layers
+                    for (int c = 0; c < 8; ++c) {
+                        const int cell = static_cast<int>(w * 64) + c8 + c;
+                        const std::uint64_t byte = (m >> (8 * c)) & 0xFF;
+                        if (byte && cell < nx_) cells[static_cast<std::size_t>(cell) * 2 + k] |= byte << lane;
+                    }
+                }
+            }
+        }
+    b.built |= ((std::uint64_t{1} << n) - 1) << lane;
+}
+
+int DiscLookup::lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear) {
+    const int band = j / kBlockRows;
+    Block& b = blocks_[static_cast<std::size_t>(layer >> 6) * bands_ + band];
+    const std::uint64_t bit = std::uint64_t{1} << (layer & 63);
+    if (!(b.built & bit)) {
+        const std::size_t cells = static_cast<std::size_t>(kBlockRows) * nx_;
+        if (b.bits.empty()) {
+            if (used + cells * 2 * sizeof(std::uint64_t) > budget) return -1;
+            used += cells * 2 * sizeof(std::uint64_t);
+            b.bits.assign(cells * 2, 0);
+        }
+        build_group(b, layer & ~(kGroup - 1), band);
+    }
+    const std::uint64_t* cell = &b.bits[(static_cast<std::size_t>(j - band * kBlockRows) * nx_ + i) * 2];
+    if (!(cell[0] & bit)) {
+        // The run of built layers without a maybe bit that holds this one.
+        const std::uint64_t free = b.built & ~cell[0];
+        const int k = layer & 63;
+        const int up = std::min(std::countr_zero(~free >> k), 64 - k) - 1;
+        const int down = std::min(std::countl_zero(~free << (63 - k)), k + 1) - 1;
+        clear->lo = layer - down;
+        clear->hi = layer + up;
+        return 1;
+    }
+    if (cell[1] & bit) return 0;
     return -1;
+}
+
+int DiscLookup::lookup_per_layer(int layer, int i, int j, std::size_t budget, std::size_t& used) {
+    Rasters& r = rasters_[layer];
+    const std::size_t W = static_cast<std::size_t>(wpr_);
+    if (r.maybe.empty()) {
+        const std::size_t words = W * ny_;
+        if (used + 2 * words * sizeof(std::uint64_t) > budget) return -1;
+        used += 2 * words * sizeof(std::uint64_t);
+        r.maybe.resize(words);
+        r.surely.resize(words);
+        for (int j0 = 0; j0 < ny_; j0 += kBlockRows) {
+            const int j1 = std::min(ny_ - 1, j0 + kBlockRows - 1);
+            grow_rows(layer, j0, j1, &r.maybe[j0 * W], &r.surely[j0 * W]);
+        }
+    }
+    const std::size_t w = static_cast<std::size_t>(j) * W + (i >> 6);
+    if (!((r.maybe[w] >> (i & 63)) & 1)) return 1;
+    if ((r.surely[w] >> (i & 63)) & 1) return 0;
+    return -1;
+}
+
+int Obstacles::fast_disc(int layer, double x, double y, double r) const {
+    if (!(r >= 0)) return -1;  // and not NaN: a map key
+    // A disc inside one that misses the model misses it too, and one around
+    // a disc that meets it meets it (disc_meets' rows and spans grow with r;
+    // the lookups' maybe and surely bits grow with it too, so the nearest
+    // radius each way is the one to ask): a column's lookup, whose words
+    // the column has at hand, answers for the other radii asked along it
+    // (a tip's taper, the steps aside).
+    auto up = std::lower_bound(columns_.begin(), columns_.end(), r,
+                               [](const DiscLookup* c, double v) { return c->radius() < v; });
+    if (up != columns_.end()) {
+        DiscLookup::LayerRange clear;
+        const int a = (*up)->lookup(layer, x, y, kFastBudget, fast_bytes_, clear);
+        if (a == 1) run_ = {x, y, (*up)->radius(), clear};
+        if (a == 1 || (a == 0 && (*up)->radius() == r)) return a;
+    }
+    if (up != columns_.begin() && (*std::prev(up))->lookup(layer, x, y, kFastBudget, fast_bytes_) == 0) return 0;
+    // The same radius comes many times in a row (one column, layer by layer).
+    if (!last_fast_ || last_r_ != r) {
+        last_fast_ = &fast_[r];
+        last_r_ = r;
+    }
+    Fast& f = *last_fast_;
+    if (!f.lookup) {
+        // Which layout: a radius asked on many layers is a column's.
+        if (f.layers.empty()) f.layers.assign(model_.size(), false);
+        if (!f.layers[layer]) {
+            f.layers[layer] = true;
+            ++f.distinct_layers;
+        }
+        if (++f.asked < kFastAfter) return -1;
+        // Columns also for a radius above all the columns' (a foot's flare, a
+        // raft), asked on few layers but at the cells the columns are: the
+        // nearest larger column answers for the radii below it.
+        const bool wide = columns_.empty() || r > columns_.back()->radius();
+        const bool column = (f.distinct_layers >= kColumnsFrom || wide) && columns_.size() < kMaxColumns;
+        f.lookup = std::make_unique<DiscLookup>(model_, r, column ? DiscLookup::Layout::Columns : DiscLookup::Layout::PerLayer);
+        if (column) {
+            columns_.push_back(f.lookup.get());
+            std::sort(columns_.begin(), columns_.end(),
+                      [](const DiscLookup* a, const DiscLookup* b) { return a->radius() < b->radius(); });
+        }
+        f.layers = {};
+    }
+    return f.lookup->lookup(layer, x, y, kFastBudget, fast_bytes_);
 }
 
 bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
+    if (x == run_.x && y == run_.y && r <= run_.r && layer >= run_.layers.lo && layer <= run_.layers.hi) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
-    // The planner asks this millions of times: whole rows of the disc a
-    // word at a time.
-    const layers::BitGrid& g = model_[layer];
-    return !any_row_in_disc(g, x, y, r, [&](int j, int i0, int i1) { return any_in_row(g, j, i0, i1); });
+    return !disc_meets(model_[layer], x, y, r);
+}
+
+bool Obstacles::disc_clear_exact(int layer, double x, double y, double r) const {
+    return layer < 0 || layer >= layer_count() || !disc_meets(model_[layer], x, y, r);
 }
 
 bool Obstacles::column_clear(double x, double y, double r, double z_lo, double z_hi) const {

@@ -3,7 +3,9 @@
 // Answers "is a disc free of the model (plus the gap) on layer L" and "where
 // is the model top under a column", so pillars and bridges never hit it.
 #include <cstdint>
+#include <limits>
 #include <map>
+#include <memory>
 #include <vector>
 
 #include "gcode/settings.hpp"
@@ -11,6 +13,77 @@
 #include "layers/raster.hpp"
 
 namespace scaffold::plan {
+
+// The exact test: whether a cell of `g` is set whose centre lies within r of
+// (x, y) (the centres of each row's span computed as below, in floating point).
+bool disc_meets(const layers::BitGrid& g, double x, double y, double r);
+
+// disc_meets for one radius on a stack of same-shaped rasters, by lookups:
+// per layer and cell, whether every disc of radius r centred in that cell
+// surely meets the raster, or surely misses it (decided with a margin far
+// above rounding; a disc near the edge of a set cell is left to the exact
+// test). Built lazily, within a byte budget shared by the caller, in one
+// of two layouts:
+// - Columns, for a radius asked on many layers (a pillar's body, tested
+//   layer by layer down its column): the bits of 64 layers of a cell in one
+//   word, so a column walked down reads the same words (rasters a layer
+//   apart are far apart in memory). Blocks of 64 rows x 64 layers, filled
+//   eight layers at a time.
+// - PerLayer, for a radius asked on a few layers (a step of a tip's
+//   taper): two rasters per layer asked, whole.
+class DiscLookup {
+public:
+    enum class Layout { Columns, PerLayer };
+    // `model` must outlive the lookup.
+    DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layout layout);
+    double radius() const { return r_; }
+    // 1 the disc misses the layer's raster, 0 it meets it, -1 unknown (near
+    // a cell's edge, outside the grid, or what it needs built would not fit
+    // `budget` bytes beyond `used`; building adds its bytes to `used`).
+    int lookup(int layer, double x, double y, std::size_t budget, std::size_t& used);
+    // The same; when the disc misses and the layout is Columns, also the
+    // layers around `layer` (of its 64) on which it surely misses too.
+    struct LayerRange {
+        int lo = 0, hi = -1;
+    };
+    int lookup(int layer, double x, double y, std::size_t budget, std::size_t& used, LayerRange& clear);
+    static constexpr int kBlockRows = 64;
+
+private:
+    struct Block {
+        std::uint64_t built = 0;          // which of its 64 layers are filled
+        std::vector<std::uint64_t> bits;  // per cell (row-major): maybe, surely; bit = layer % 64
+    };
+    struct Rasters {
+        std::vector<std::uint64_t> maybe, surely;  // row-major, words_per_row() words a row
+    };
+    // Rows j0..j1 (at most kBlockRows) of the layer's raster grown by the
+    // maybe_ and the sure_ offsets, into maybe and surely (zeroed here).
+    void grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const;
+    // Fills layers first.. first + kGroup - 1 (those that exist) of a Columns block.
+    static constexpr int kGroup = 8;
+    void build_group(Block& b, int first, int band);
+    int lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear);
+    int lookup_per_layer(int layer, int i, int j, std::size_t budget, std::size_t& used);
+
+    const layers::BitGrid* model_;  // the vector's elements: they stay put when it moves
+    int layers_;
+    double r_;
+    Layout layout_;
+    bool usable_ = false;
+    int nx_ = 0, ny_ = 0, wpr_ = 0, bands_ = 0;
+    // Per row offset d: a set cell d rows and at most maybe_[d] columns away
+    // may have its centre within r of a point of the cell (when there is
+    // none, every disc centred in the cell misses); one at most sure_[d]
+    // columns away has it within r of every point (every such disc meets).
+    std::vector<int> maybe_, sure_;
+    std::vector<Block> blocks_;    // Columns: by (layer / 64) * bands_ + row / kBlockRows
+    std::vector<Rasters> rasters_;  // PerLayer: by layer
+    std::vector<std::uint64_t> scratch_;
+    // The last point asked and its cell (none yet: NaN equals nothing).
+    double last_x_ = std::numeric_limits<double>::quiet_NaN(), last_y_ = last_x_;
+    int last_i_ = 0, last_j_ = 0;
+};
 
 class Obstacles {
 public:
@@ -21,6 +94,9 @@ public:
     double layer_height(int layer) const { return h_[layer]; }
     // True when no model cell on `layer` lies within r of (x, y).
     bool disc_clear(int layer, double x, double y, double r) const;
+    // The same by the exact test alone, without the lookups (which must
+    // give the same answers): for tests.
+    bool disc_clear_exact(int layer, double x, double y, double r) const;
     // True when the disc is clear on every layer whose top z is in (z_lo, z_hi].
     bool column_clear(double x, double y, double r, double z_lo, double z_hi) const;
     // Nearest layer below `layer` (by the stack's `below` chain) whose model
@@ -36,25 +112,36 @@ public:
 
 private:
     // disc_clear's fast path for a radius asked often (a pillar's body is
-    // tested at one radius on every layer it passes): per layer, the model
-    // grown by r less and by r plus half a cell's diagonal answer most
-    // queries exactly with one lookup; the rest take the exact test.
-    struct Grown {
+    // tested at one radius on every layer it passes): a DiscLookup of that
+    // radius answers most queries with one bit; the rest take the exact test.
+    struct Fast {
         long long asked = 0;
-        std::vector<layers::BitGrid> surely_blocked, maybe_blocked;  // per layer, lazily
+        std::vector<bool> layers;            // which layers were asked, until the lookup is built
+        int distinct_layers = 0;
+        std::unique_ptr<DiscLookup> lookup;  // built after kFastAfter queries
     };
-    static constexpr long long kFastAfter = 4000;  // queries of one radius before its rasters are built
-    static constexpr std::size_t kFastBudget = std::size_t{64} << 20;  // bytes for all of them
+    static constexpr int kColumnsFrom = 16;  // layers asked (of the first kFastAfter queries) for the Columns layout
+    static constexpr long long kFastAfter = 4000;  // queries of one radius before its lookup is built
+    static constexpr std::size_t kFastBudget = std::size_t{64} << 20;  // bytes for all lookups
     int fast_disc(int layer, double x, double y, double r) const;  // 1 clear, 0 blocked, -1 unknown
 
     std::vector<double> z_, h_;
     std::vector<int> below_;
     std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
     mutable std::vector<layers::BitGrid> grown_;  // model_ dilated by `inflate`, lazily
-    mutable std::map<std::int64_t, Grown> fast_;   // by radius in micrometres
-    mutable Grown* last_fast_ = nullptr;            // the last radius asked (map nodes stay put)
-    mutable std::int64_t last_key_ = 0;
+    mutable std::map<double, Fast> fast_;   // by radius
+    mutable Fast* last_fast_ = nullptr;     // the last radius asked (map nodes stay put)
+    mutable double last_r_ = 0;
     mutable std::size_t fast_bytes_ = 0;
+    mutable std::vector<DiscLookup*> columns_;  // the Columns lookups of fast_, by radius
+    // Layers lo..hi on which a disc of radius up to r at (x, y) surely
+    // misses the model: a column walked down asks them one by one.
+    struct ClearRun {
+        double x = 0, y = 0, r = -1;
+        DiscLookup::LayerRange layers;
+    };
+    mutable ClearRun run_;
+    static constexpr std::size_t kMaxColumns = 6;
 };
 
 }  // namespace scaffold::plan

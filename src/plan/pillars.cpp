@@ -133,7 +133,8 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 }
             }
         }
-        if (!obs.disc_clear(l, cx, cy, need) && !first) {
+        bool clear = obs.disc_clear(l, cx, cy, need);
+        if (!clear && !first) {
             // Step aside by what the loop below still holds, preferring the
             // direction with the most room; fixed order breaks ties.
             // A loop may shift by the self-supporting reach plus half its
@@ -151,9 +152,10 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 cx += step * std::cos(best * std::numbers::pi / 4);
                 cy += step * std::sin(best * std::numbers::pi / 4);
                 wander += step;
+                clear = obs.disc_clear(l, cx, cy, need);
             }
         }
-        if (obs.disc_clear(l, cx, cy, need)) {
+        if (clear) {
             path.push_back({cx, cy, layer.z});
             height_above = layer.height;
             continue;
@@ -205,13 +207,21 @@ std::vector<Column> columns_of(const Column& proto, const std::vector<Step>& pat
 // Largest foot and raft that keep the gap on the first layers.
 void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
     if (c.base != Base::Bed) return;
+    // The layers each size is tried on, found once (not once per size: this
+    // runs for every pillar end the bridge search asks about).
+    std::vector<int> foot_layers, raft_layers;
+    for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
+        const layers::Layer& layer = stack.layers[l];
+        if (!(layer.z >= s.foot_height || layer.z > c.z1)) foot_layers.push_back(l);
+        if (layer.on_bed && layer.z <= c.z1) raft_layers.push_back(l);
+    }
     if (top_z - c.z0 > kFootMinHeight) {
         for (double fr = s.foot_radius; fr > c.radius + 1e-9; fr -= 0.5) {
             c.foot_radius = fr;
             bool ok = true;
-            for (int l = 0; l < static_cast<int>(stack.layers.size()) && ok; ++l) {
+            for (std::size_t k = 0; k < foot_layers.size() && ok; ++k) {
+                const int l = foot_layers[k];
                 double z = stack.layers[l].z;
-                if (z >= s.foot_height || z > c.z1) continue;
                 double x, y;
                 column_centre_at(c, z, x, y);
                 ok = obs.disc_clear(l, x, y, column_radius_at(c, z, s) + s.xy_gap);
@@ -222,9 +232,8 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
     }
     for (double size = s.raft_size; size >= 2 * c.radius; size -= 1.0) {
         bool ok = true;
-        for (int l = 0; l < static_cast<int>(stack.layers.size()) && ok; ++l)
-            if (stack.layers[l].on_bed && stack.layers[l].z <= c.z1)
-                ok = obs.disc_clear(l, c.x0, c.y0, size / std::numbers::sqrt2 + s.xy_gap);
+        for (std::size_t k = 0; k < raft_layers.size() && ok; ++k)
+            ok = obs.disc_clear(raft_layers[k], c.x0, c.y0, size / std::numbers::sqrt2 + s.xy_gap);
         if (ok) {
             c.raft_size = size;
             return;
