@@ -246,7 +246,8 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
-                                               const Settings& s, const Trunks* trunks, TipPlaces places) {
+                                               const Settings& s, const Trunks* trunks, TipPlaces places,
+                                               bool fit_base) {
     int top_layer = stack.layers[overhang_layer].below;
     if (top == Top::Contact)
         for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
@@ -297,7 +298,8 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 if (c.radius < proto.radius && c.z1 - c.z0 > 2 * c.radius * s.slenderness) continue;
                 std::vector<Column> chain = columns_of(c, path);
                 if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
-                if (chain.front().base == Base::Bed) fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
+                if (fit_base && chain.front().base == Base::Bed)
+                    fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
             }
         }

@@ -43,11 +43,13 @@ inline constexpr double kBranchSteer = 3.0;
 // `places`: where a tip may stand away from the point (METHOD's rule (c) holds
 // only the sheet a tip lies under): under the overhanging layer's material
 // first, then anywhere within reach (Any), or only one of the two.
+// `fit_base` false: no foot and raft fitted (whether a pillar stands does
+// not depend on them).
 enum class TipPlaces { Any, UnderSheet, Beside };
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
                                                const Settings& settings, const Trunks* trunks = nullptr,
-                                               TipPlaces places = TipPlaces::Any);
+                                               TipPlaces places = TipPlaces::Any, bool fit_base = true);
 
 // Support point indices in a canonical order, so the plan does not depend
 // on the order of the input: place_points' own (layer, y, x), then z and index.

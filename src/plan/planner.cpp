@@ -264,7 +264,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // Bridge ends need a pillar that drop_pillar can really build.
     m.end_stands = [&](double x, double y, double z) {
         int above = by_z.above(z);
-        return above >= 0 && drop_pillar(x, y, above, Top::Bridge, stack, obs, s).has_value();
+        return above >= 0 && drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, false).has_value();
     };
     std::vector<Active> start;
     for (int i : canonical_order(points)) {
