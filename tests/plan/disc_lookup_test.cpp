@@ -7,6 +7,7 @@
 #include "layers/layer_stack.hpp"
 #include "layers/raster.hpp"
 #include "plan/obstacles.hpp"
+#include "support/stacks.hpp"
 
 using namespace scaffold;
 
@@ -148,23 +149,17 @@ TEST(DiscLookup, OverTheBudgetItDefersToTheExactTest) {
 // through the nearest column's lookup, the remembered clear runs and the
 // exact test; all must answer as the exact test does.
 TEST(DiscLookup, ObstaclesAnswerAsTheExactTestDoes) {
-    layers::LayerStack st;
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> ux(0, 40), uy(0, 30);
-    for (int i = 0; i < 150; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        for (int k = 0; k < 4; ++k) {
-            float x0 = float(ux(rng)), y0 = float(uy(rng));
-            l.segments.push_back({x0, y0, x0 + 3.0f, y0 + 1.0f, 0.45f, gcode::Role::Perimeter,
-                                  static_cast<std::uint32_t>(l.segments.size())});
-        }
-        st.layers.push_back(l);
-    }
-    st.bounds = {0, 0, 43, 31};
+    const layers::LayerStack st = test::stack_of(
+        150,
+        [&](int, layers::Layer& l) {
+            for (int k = 0; k < 4; ++k) {
+                const double x0 = ux(rng), y0 = uy(rng);
+                test::bead(l, x0, y0, x0 + 3.0, y0 + 1.0, gcode::Role::Perimeter);
+            }
+        },
+        {0, 0, 43, 31});
     Settings s;
     const plan::Obstacles obs(st, s);
     long long asked = 0, blocked = 0;
