@@ -105,14 +105,23 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
         if (g.size() < 2) continue;
         BgMulti all;
         try {
+            // Pairwise, in rounds (a balanced tree of unions): a group of
+            // hundreds of loops (dense pillars) would otherwise make each
+            // union as large as everything merged so far.
+            std::vector<BgMulti> parts;
             for (int k : g) {
                 BgPolygon poly;
                 for (const Point& pt : paths[loops[k].first].points) poly.outer().push_back({pt.x, pt.y});
                 bg::correct(poly);
-                BgMulti next;
-                bg::union_(all, poly, next);
-                all = std::move(next);
+                parts.push_back(BgMulti{poly});
             }
+            while (parts.size() > 1) {
+                std::vector<BgMulti> next((parts.size() + 1) / 2);
+                for (std::size_t i = 0; i + 1 < parts.size(); i += 2) bg::union_(parts[i], parts[i + 1], next[i / 2]);
+                if (parts.size() % 2) next.back() = std::move(parts.back());
+                parts = std::move(next);
+            }
+            all = std::move(parts.front());
         } catch (const bg::exception&) {
             continue;  // a degenerate overlay: keep the loops as they are
         }
