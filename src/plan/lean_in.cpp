@@ -22,6 +22,7 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
     lean.radius = s.tip_radius;  // thin all the way: it stands on the pillar's tapered top
     lean.top = Top::Contact;
     lean.base = Base::Column;
+    int pillars_tried = 0;
     static constexpr std::array<double, 9> kRings{1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.5, kLeanInReach};
     // The tip at the point or, where its own contact has no room, beside it
     // under the overhanging layer's material (METHOD's rule (c)).
@@ -60,7 +61,10 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
                         clear = obs.disc_clear(down[k], cx, cy, column_radius_at(c, z, s) + clearance_at(c, z, s));
                     }
                     if (!clear) continue;
-                    // A pillar under it up to the leaning column's first loop.
+                    // A pillar under it up to the leaning column's first loop;
+                    // a bounded number of them per point (each walks down the
+                    // stack), so a point nothing reaches costs little.
+                    if (++pillars_tried > kLeanInPillars) return std::nullopt;
                     auto chain = drop_pillar(px, py, down[n - 1], Top::Bridge, stack, obs, s, trunks);
                     if (!chain) continue;
                     if (s.buildplate_only && (chain->empty() || chain->front().base != Base::Bed)) continue;
