@@ -30,6 +30,19 @@ const char* block_type_name(std::uint16_t type) {
 
 namespace {
 
+// The lines of a text, without their '\n' (a last line without one too).
+std::vector<std::string_view> split_lines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+        std::size_t nl = text.find('\n', pos);
+        std::size_t end = nl == std::string_view::npos ? text.size() : nl;
+        lines.push_back(text.substr(pos, end - pos));
+        pos = end + 1;
+    }
+    return lines;
+}
+
 constexpr std::size_t kFileHeaderSize = 10;
 constexpr std::size_t kMaxGCodeBlock = 65535;  // the reference writer's block size, before compression
 
@@ -123,12 +136,7 @@ std::string decompress(std::string_view in, std::uint16_t c, std::size_t expect)
 
 Metadata parse_metadata(std::string_view text) {
     Metadata m;
-    std::size_t pos = 0;
-    while (pos < text.size()) {
-        std::size_t nl = text.find('\n', pos);
-        std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-        std::string_view line = text.substr(pos, end - pos);
-        pos = end + 1;
+    for (std::string_view line : split_lines(text)) {
         if (line.empty()) continue;
         std::size_t eq = line.find('=');
         if (eq == std::string_view::npos) throw Error("metadata line without '=': '" + std::string(line.substr(0, 60)) + "'");
@@ -390,18 +398,6 @@ void append_gcode_blocks(std::string& out, std::string_view gcode, const Setting
             out.append(make_block(BlockType::GCode, s.gcode, params, packed, s.checksum));
         }
     }
-}
-
-std::vector<std::string_view> split_lines(std::string_view text) {
-    std::vector<std::string_view> lines;
-    std::size_t pos = 0;
-    while (pos < text.size()) {
-        std::size_t nl = text.find('\n', pos);
-        std::size_t end = nl == std::string_view::npos ? text.size() : nl;
-        lines.push_back(text.substr(pos, end - pos));
-        pos = end + 1;
-    }
-    return lines;
 }
 
 }  // namespace
