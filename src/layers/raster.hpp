@@ -85,6 +85,7 @@ public:
         or_span(&words_[static_cast<std::size_t>(j) * wpr_], i0, i1);
     }
     const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
+    BitGrid empty_like() const;  // same shape, no cells set
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
 
     // Sets every cell whose centre is within width/2 of the segment.
@@ -126,7 +127,6 @@ private:
         out = k;
         return f > kSureCells && f < 1 - kSureCells;
     }
-    BitGrid empty_like() const;  // same shape, no cells set
     std::size_t word_index(int i, int j) const { return static_cast<std::size_t>(j) * wpr_ + (i >> 6); }
     double ox_ = 0, oy_ = 0, cell_ = 0.1, inv_cell_ = 10;
     int nx_ = 0, ny_ = 0, wpr_ = 0;

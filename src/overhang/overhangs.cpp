@@ -396,9 +396,12 @@ std::vector<Region> find_regions(const layers::LayerStack& stack, const Settings
 }  // namespace
 
 Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
-    Overhangs out;
     const layers::BitGrid proto = layers::make_grid(stack, s.resolution, 2.0);
-    const std::vector<Region> found = find_regions(stack, s, proto);
+    return overhangs_of(find_regions(stack, s, proto), proto, s);
+}
+
+Overhangs overhangs_of(const std::vector<Region>& found, const layers::BitGrid& proto, const Settings& s) {
+    Overhangs out;
     // Drop specks: lone regions smaller than the minimum area. Judged over
     // the chain of regions that continue one another from layer to layer,
     // not per layer: a steep slope overhangs by a sliver on every layer;
@@ -411,7 +414,7 @@ Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& s) {
         if (out.layers.empty() || out.layers.back().layer != r.layer) {
             OverhangLayer ol;
             ol.layer = r.layer;
-            ol.cells = proto;
+            ol.cells = proto.empty_like();
             out.layers.push_back(std::move(ol));
         }
         OverhangLayer& ol = out.layers.back();
@@ -436,9 +439,7 @@ SupportPoints place_points(const Overhangs& overhangs, const layers::LayerStack&
         // to a large overhang is held by the large one's points).
         auto comps = regions(g, kJoin);
         std::stable_sort(comps.begin(), comps.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
-        layers::BitGrid covered = comps.size() > 1 ? layers::BitGrid(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
-                                                                     g.origin_y() + g.height() * g.cell(), g.cell())
-                                                   : layers::BitGrid();
+        layers::BitGrid covered = comps.size() > 1 ? g.empty_like() : layers::BitGrid();
         for (auto& comp : comps) {
             if (!pts.empty()) {
                 std::erase_if(comp, [&](const Cell& c) { return covered.get(c.i, c.j); });

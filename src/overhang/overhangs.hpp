@@ -35,6 +35,11 @@ struct SupportPoints {
 
 Overhangs find_overhangs(const layers::LayerStack& stack, const Settings& settings);
 
+// Overhang regions (in layer order) as Overhangs on grids shaped like
+// `proto`, less the specks (layers::kept_regions at --min-overhang-area):
+// find_overhangs' last step, and what the planner's coverage check leaves.
+Overhangs overhangs_of(const std::vector<layers::Region>& found, const layers::BitGrid& proto, const Settings& settings);
+
 using layers::Cell;
 using layers::components;
 

@@ -15,17 +15,11 @@ namespace {
 // Samples of a tip's top loop: its outer edge, half a cell in, and centre.
 constexpr int kTipSamples = 16;
 
-layers::BitGrid empty_copy(const layers::BitGrid& g) {
-    return layers::BitGrid(g.origin_x(), g.origin_y(), g.origin_x() + g.width() * g.cell(),
-                           g.origin_y() + g.height() * g.cell(), g.cell());
-}
-
 }  // namespace
 
 overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const Scaffold& scaffold,
                                    const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
-    overhang::Overhangs out;
-    if (overhangs.layers.empty()) return out;
+    if (overhangs.layers.empty()) return {};
     // Tips by height: columns that end touching the model.
     std::vector<const Column*> tips;
     for (const Column& c : scaffold.columns)
@@ -38,7 +32,7 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
         // METHOD: support on one of the three layers below L.
         const double h = layer.nominal_height > 0 ? layer.nominal_height : s.layer_height;
         const double z_lo = layer.z - 3 * h - 0.5 * h, z_hi = layer.z - 0.5 * layer.height;
-        layers::BitGrid covered = empty_copy(ol.cells);
+        layers::BitGrid covered = ol.cells.empty_like();
         auto it = std::lower_bound(tips.begin(), tips.end(), z_lo, [](const Column* c, double z) { return c->z1 < z; });
         for (; it != tips.end() && (*it)->z1 <= z_hi; ++it) {
             const Column& c = **it;
@@ -57,44 +51,7 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
         for (auto& comp : layers::regions(left, layers::kRegionJoin))
             found.push_back(layers::make_region(std::move(comp), ol.layer, layer.z));
     }
-    const std::vector<char> kept = layers::kept_regions(found, proto, s.layer_height, s.min_overhang_area);
-    const double cell_area = proto.cell_area();
-    for (std::size_t k = 0; k < found.size(); ++k) {
-        if (!kept[k]) continue;
-        const layers::Region& r = found[k];
-        if (out.layers.empty() || out.layers.back().layer != r.layer) {
-            overhang::OverhangLayer ol;
-            ol.layer = r.layer;
-            ol.cells = empty_copy(proto);
-            out.layers.push_back(std::move(ol));
-        }
-        overhang::OverhangLayer& ol = out.layers.back();
-        for (const layers::Cell& c : r.cells) ol.cells.set(c.i, c.j);
-        const double a = static_cast<double>(r.cells.size()) * cell_area;
-        ol.area_mm2 += a;
-        out.area_mm2 += a;
-    }
-    return out;
-}
-
-void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, std::size_t first,
-                 const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer) {
-    Trunks trunks(stack, steer);
-    trunks.add(scaffold.columns, stack, s);
-    for (std::size_t i = first; i < points.points.size(); ++i) {
-        const overhang::SupportPoint& p = points.points[i];
-        auto chain = support_point(p.x, p.y, p.layer, stack, obs, s, &trunks);
-        if (!chain) {
-            scaffold.dropped_points.push_back(static_cast<int>(i));
-            continue;
-        }
-        trunks.add(*chain, stack, s);
-        for (Column& c : *chain) {
-            c.point = static_cast<int>(i);
-            scaffold.columns.push_back(c);
-        }
-    }
-    std::sort(scaffold.dropped_points.begin(), scaffold.dropped_points.end());
+    return overhang::overhangs_of(found, proto, s);
 }
 
 std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
@@ -106,7 +63,9 @@ std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, co
         if (more.points.empty()) break;
         const std::size_t first = points.points.size(), columns = scaffold.columns.size();
         points.points.insert(points.points.end(), more.points.begin(), more.points.end());
-        add_pillars(scaffold, points, first, stack, obs, s, steer);
+        std::vector<int> which(points.points.size() - first);
+        for (std::size_t i = 0; i < which.size(); ++i) which[i] = static_cast<int>(first + i);
+        add_pillars(scaffold, points, which, stack, obs, s, steer);
         // Keep the new points that got a pillar, renumbered in order.
         std::vector<int> index(points.points.size(), -1);
         std::size_t kept = first;

@@ -19,15 +19,8 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
                                    const layers::LayerStack& stack, const Obstacles& obstacles,
                                    const Settings& settings);
 
-// Pillars under points.points[first..] added to a plan, standing on its
-// columns where they meet them (branching within `steer` mm, as planned);
-// a point no pillar reaches from under its sheet gets one leaning in
-// (support_point).
-void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, std::size_t first,
-                 const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings, double steer);
-
 // Up to `rounds` times: points on what the plan's tips leave unheld, each
-// with a pillar (add_pillars); points no pillar reaches are taken out again
+// with a pillar (add_pillars, lean_in.hpp); points no pillar reaches are taken out again
 // (the ones of the first plan stay, dropped), and a round that adds no
 // pillar ends it. Returns the number of points added.
 std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, const overhang::Overhangs& overhangs,

@@ -9,8 +9,7 @@ namespace scaffold::plan {
 
 std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_layer, const layers::LayerStack& stack,
                                            const Obstacles& obs, const Settings& s, const Trunks* trunks) {
-    int top_layer = stack.layers[overhang_layer].below;
-    for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
+    const int top_layer = tip_layer(stack, overhang_layer, s);
     if (top_layer < 0) return std::nullopt;
     // The layers below the tip, top first.
     std::vector<int> down;
@@ -83,6 +82,26 @@ std::optional<std::vector<Column>> support_point(double x, double y, int overhan
         return chain;
     if (auto chain = lean_in(x, y, overhang_layer, stack, obs, s, trunks)) return chain;
     return drop_pillar(x, y, overhang_layer, Top::Contact, stack, obs, s, trunks, TipPlaces::Beside);
+}
+
+void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, const std::vector<int>& which,
+                 const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer) {
+    Trunks trunks(stack, steer);
+    trunks.add(scaffold.columns, stack, s);
+    for (int i : which) {
+        const overhang::SupportPoint& p = points.points[i];
+        auto chain = support_point(p.x, p.y, p.layer, stack, obs, s, &trunks);
+        if (!chain) {
+            scaffold.dropped_points.push_back(i);
+            continue;
+        }
+        trunks.add(*chain, stack, s);
+        for (Column& c : *chain) {
+            c.point = i;
+            scaffold.columns.push_back(c);
+        }
+    }
+    std::sort(scaffold.dropped_points.begin(), scaffold.dropped_points.end());
 }
 
 }  // namespace scaffold::plan

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "layers/layer_stack.hpp"
+#include "overhang/overhangs.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
 #include "plan/scaffold.hpp"
@@ -26,6 +27,13 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
 std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
                                                  const layers::LayerStack& stack, const Obstacles& obstacles,
                                                  const Settings& settings, const Trunks* trunks);
+
+// support_point under each of points.points[which], in that order, added to
+// the plan with the point's index; each stands on the plan's columns where
+// it meets them (branching within `steer` mm; 0: straight down only).
+// Points that get none are added to dropped_points (sorted).
+void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, const std::vector<int>& which,
+                 const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings, double steer);
 
 // Farthest a leaning column comes from (mm, horizontally).
 inline constexpr double kLeanInReach = 8.0;

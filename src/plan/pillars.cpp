@@ -244,13 +244,17 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 }  // namespace
 
+int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Settings& s) {
+    int l = stack.layers[overhang_layer].below;
+    for (int k = 0; k < s.top_gap_layers && l >= 0; ++k) l = stack.layers[l].below;
+    return l;
+}
+
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
                                                const Settings& s, const Trunks* trunks, TipPlaces places,
                                                bool fit_base) {
-    int top_layer = stack.layers[overhang_layer].below;
-    if (top == Top::Contact)
-        for (int k = 0; k < s.top_gap_layers && top_layer >= 0; ++k) top_layer = stack.layers[top_layer].below;
+    const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
     proto.top = top;
@@ -358,23 +362,9 @@ Scaffold plan_pillars(const overhang::SupportPoints& points, const layers::Layer
     // point a fraction of a millimetre from the last, and pillars side by
     // side would print the same ring many times over. Lower points first
     // (the canonical order is by layer), so the higher stand on the lower.
-    Trunks trunks(stack, 0.0);
+    // Where no vertical pillar reaches a tip under the sheet, one leans in.
     Scaffold out;
-    for (int i : canonical_order(points)) {
-        const auto& p = points.points[i];
-        // Where no vertical pillar reaches a tip under the sheet, one leans in.
-        auto chain = support_point(p.x, p.y, p.layer, stack, obstacles, settings, &trunks);
-        if (!chain) {
-            out.dropped_points.push_back(i);
-            continue;
-        }
-        trunks.add(*chain, stack, settings);
-        for (Column& c : *chain) {
-            c.point = i;
-            out.columns.push_back(c);
-        }
-    }
-    std::sort(out.dropped_points.begin(), out.dropped_points.end());
+    add_pillars(out, points, canonical_order(points), stack, obstacles, settings, 0.0);
     return out;
 }
 

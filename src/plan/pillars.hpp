@@ -40,6 +40,10 @@ inline constexpr double kBranchSteer = 3.0;
 // --top-gap-layers), near (x, y), as columns from the bottom up. nullopt when
 // no clear path exists (or it would stand on the model with --buildplate-only).
 // With `trunks`, it may end on one of them (Base::Column).
+// The layer a tip under `overhang_layer` reaches up to: the one beneath it,
+// less --top-gap-layers; -1 where there is none.
+int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Settings& settings);
+
 // `places`: where a tip may stand away from the point (METHOD's rule (c) holds
 // only the sheet a tip lies under): under the overhanging layer's material
 // first, then anywhere within reach (Any), or only one of the two.

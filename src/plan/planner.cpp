@@ -269,8 +269,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     std::vector<Active> start;
     for (int i : canonical_order(points)) {
         const auto& p = points.points[i];
-        int t = stack.layers[p.layer].below;
-        for (int k = 0; k < s.top_gap_layers && t >= 0; ++k) t = stack.layers[t].below;
+        const int t = tip_layer(stack, p.layer, s);
         if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
         start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
