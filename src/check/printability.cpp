@@ -20,7 +20,7 @@ namespace scaffold::check {
 
 namespace {
 
-constexpr double kZEps = 1e-4;
+using layers::kZEps;
 constexpr double kStraightDeg = 10;
 
 std::string fixed(double v, int d) {
@@ -115,6 +115,10 @@ struct LayerGrids {
     int index = -1;
     layers::BitGrid model, support;
     layers::BitGrid skirt;  // skirt and brim: material, but it encloses nothing
+    // With --original, the support the original itself holds (a file sliced
+    // with support on): it holds what rests on it like any support, but its
+    // own faults are the original's, reported apart.
+    layers::BitGrid slicer;
 };
 
 // A straight run of consecutive segments of one extrusion path, as samples
@@ -342,6 +346,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     auto is_support_move = [&](const gcode::Move& m) {
         return gcode::is_support(m.role) || (!inserted.empty() && inserted[m.line]);
     };
+    auto is_slicer_support = [&](const gcode::Move& m) {
+        return original && gcode::is_support(m.role) && !inserted.empty() && !inserted[m.line];
+    };
 
     // Extrusion sanity. The slicer's own start code (purge and prime before
     // the first layer) and, with --original, what the original already did
@@ -354,7 +361,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     // sorting out here: the output's start code is reported apart first.
     std::set<std::pair<std::uint32_t, int>> own;
     if (original)
-        for (const Problem& q : extrusion_problems(*original, settings, [](const gcode::Move&) { return false; }).problems)
+        for (const Problem& q :
+             extrusion_problems(*original, settings, [](const gcode::Move& m) { return gcode::is_support(m.role); }).problems)
             own.insert({q.line, static_cast<int>(q.kind)});
     // A tool change's purge (Bambu's M620..M621 flush, PrusaSlicer's wipe
     // tower change) is the slicer's own, like the start code's.
@@ -400,10 +408,12 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         g.model = proto;
         g.support = proto;
         g.skirt = proto;
+        g.slicer = proto;
         for (const auto& sg : stack.layers[index].segments) {
-            layers::BitGrid& into = is_support_move(out.moves[sg.move]) ? g.support
-                                    : sg.role == gcode::Role::Skirt  ? g.skirt
-                                                                     : g.model;
+            layers::BitGrid& into = is_slicer_support(out.moves[sg.move]) ? g.slicer
+                                    : is_support_move(out.moves[sg.move]) ? g.support
+                                    : sg.role == gcode::Role::Skirt       ? g.skirt
+                                                                          : g.model;
             into.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
         }
         return cache.emplace(index, std::move(g)).first->second;
@@ -455,30 +465,38 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         const LayerGrids& here = grids(L);
 
         // Collisions: support within the gap of the model on the same layer,
-        // except contact tips (support that ends within two layers).
-        if (here.support.any()) {
-            layers::BitGrid coll = here.support;
+        // except contact tips (support that ends within two layers). The
+        // original's own support is measured the same way, and apart.
+        auto collisions = [&](layers::BitGrid LayerGrids::*which) {
+            layers::BitGrid coll = here.*which;
             // Against the filled footprint: support inside the part (in a
             // hole of its sparse infill) can never be removed.
             coll &= here.model.filled().dilated(std::max(0.0, o.xy_gap - o.resolution));
-            if (coll.any()) {
-                // A cell is a tip when its support ends here or on the next
-                // layer: only cells with support on both layers above count
-                // (one pillar's tip under another's loop two layers up is
-                // still a tip).
-                int above = 0;
-                for (int k = L + 1; k < static_cast<int>(stack.layers.size()) && above < 2; ++k)
-                    if (stack.layers[k].z > layer.z + kZEps) {
-                        ++above;
-                        coll &= grids(k).support;
-                    }
-                if (above < 2) coll.clear();
-                if (coll.any()) {
-                    LayerIssue is = issue_of(coll, L, layer.z);
-                    r.collision_mm2 += is.area_mm2;
-                    add_issue(r.worst_collisions, is, o.worst);
+            if (!coll.any()) return coll;
+            // A cell is a tip when its support ends here or on the next
+            // layer: only cells with support on both layers above count
+            // (one pillar's tip under another's loop two layers up is
+            // still a tip).
+            int above = 0;
+            for (int k = L + 1; k < static_cast<int>(stack.layers.size()) && above < 2; ++k)
+                if (stack.layers[k].z > layer.z + kZEps) {
+                    ++above;
+                    coll &= grids(k).*which;
                 }
+            if (above < 2) coll.clear();
+            return coll;
+        };
+        if (here.support.any()) {
+            const layers::BitGrid coll = collisions(&LayerGrids::support);
+            if (coll.any()) {
+                LayerIssue is = issue_of(coll, L, layer.z);
+                r.collision_mm2 += is.area_mm2;
+                add_issue(r.worst_collisions, is, o.worst);
             }
+        }
+        if (here.slicer.any()) {
+            const layers::BitGrid coll = collisions(&LayerGrids::slicer);
+            r.original_collision_mm2 += static_cast<double>(coll.count()) * proto.cell_area();
         }
         if (here.support.any()) r.support_overlap_mm2 += support_overlap(stack.layers[L].segments);
         if (layer.on_bed) continue;
@@ -497,7 +515,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             }
             const LayerGrids& g = grids(k);
             below |= g.support;
+            below |= g.slicer;
             tips |= g.support;  // support on the three layers below: a tip where it lies under this layer's model
+            tips |= g.slicer;
             if (dz <= std::max(h_nom, layer.nominal_height) + kZEps || k == layer.below) {
                 below |= g.model;
                 skirt_below |= g.skirt;
@@ -508,8 +528,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             const LayerGrids& g = grids(layer.below);
             below |= g.model;
             below |= g.support;
+            below |= g.slicer;
             skirt_below |= g.skirt;
             tips |= g.support;
+            tips |= g.slicer;
         }
         // METHOD's rule (c): a contact tip of this layer is support that lies
         // directly under model material of this layer (within one cell). A
@@ -612,20 +634,23 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                     if (!sm.held && tip_reach.get(tip_reach.col(sm.x), tip_reach.row(sm.y))) sm.held = true;
         }
         // What is left is unheld: draw those stretches of bead.
-        layers::BitGrid unheld_model = proto, unheld_support = proto;
+        layers::BitGrid unheld_model = proto, unheld_support = proto, unheld_slicer = proto;
         bool any_left = false;
         for (const auto& piece : pieces)
             for (std::size_t k = 0; k < piece.size(); ++k) {
                 if (piece[k].held) continue;
-                any_left = true;
                 const auto& sm = piece[k];
                 const auto& sg = segs[sm.seg];
+                const gcode::Move& m = out.moves[sg.move];
+                const bool slicer = is_slicer_support(m);
+                any_left |= !slicer;
                 // Through the unheld samples only, as the detector draws them
                 // (so a region it finds under the speck size is never larger here).
                 const auto& prev = k > 0 && !piece[k - 1].held ? piece[k - 1] : sm;
-                (is_support_move(out.moves[sg.move]) ? unheld_support : unheld_model)
+                (slicer ? unheld_slicer : is_support_move(m) ? unheld_support : unheld_model)
                     .draw_segment(prev.x, prev.y, sm.x, sm.y, sg.width);
             }
+        r.original_unheld_support_mm2 += static_cast<double>(unheld_slicer.count()) * proto.cell_area();
         if (!any_left) continue;
         double am = static_cast<double>(unheld_model.count()) * proto.cell_area();
         double as = static_cast<double>(unheld_support.count()) * proto.cell_area();
@@ -715,6 +740,10 @@ std::string report_text(const CheckReport& r) {
              " extrusion notes\n";
         for (const auto& n : r.original_notes) o += "    " + n + "\n";
     }
+    if (r.original_unheld_support_mm2 > 0 || r.original_collision_mm2 > 0)
+        o += "  the original's own support (sliced with support on; not a failure): " +
+             fixed(r.original_unheld_support_mm2, 2) + " mm^2 unheld, " + fixed(r.original_collision_mm2, 2) +
+             " mm^2 within the XY gap of the model\n";
     if (r.compared)
         o += std::string("  model vs original: ") +
              (r.model_unchanged ? "unchanged"
@@ -764,6 +793,8 @@ std::string report_json(const CheckReport& r) {
     o += "  \"outside_bed\": " + std::to_string(r.outside_bed) + ",\n";
     o += "  \"start_code_problems\": " + std::to_string(r.start_code_problems) + ",\n";
     o += "  \"original_problems\": " + std::to_string(r.original_problems) + ",\n";
+    o += "  \"original_unheld_support_mm2\": " + fixed(r.original_unheld_support_mm2, 3) + ",\n";
+    o += "  \"original_collision_mm2\": " + fixed(r.original_collision_mm2, 3) + ",\n";
     o += std::string("  \"model_unchanged\": ") + (r.model_unchanged ? "true" : "false") + ",\n";
     o += "  \"model_lines_missing\": " + std::to_string(r.model_lines_missing) + ",\n";
     o += "  \"model_moves_changed\": " + std::to_string(r.model_moves_changed) + ",\n";

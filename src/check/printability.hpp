@@ -67,6 +67,10 @@ struct CheckReport {
     std::vector<std::string> start_code_notes;
     int original_problems = 0;
     std::vector<std::string> original_notes;
+    // With --original, the support the original held itself (sliced with
+    // support on): its unheld area and collisions, reported apart.
+    double original_unheld_support_mm2 = 0;
+    double original_collision_mm2 = 0;
     bool compared = false;         // --original given
     bool model_unchanged = true;
     std::string model_change;      // first difference, when changed

@@ -43,7 +43,27 @@ constexpr std::array<std::pair<std::string_view, Role>, 44> kNames{{
     {"move to first perimeter point", Role::Unknown}, {"skirt", Role::Skirt},
 }};
 
+// Simplify3D 3.x/4.x feature comments. A raft is support (Cura's is typed
+// SUPPORT too); the ooze shield and prime pillar are printed for the nozzle.
+constexpr std::array<std::pair<std::string_view, Role>, 12> kSimplify3D{{
+    {"outer perimeter", Role::ExternalPerimeter}, {"inner perimeter", Role::Perimeter},
+    {"solid layer", Role::SolidInfill}, {"infill", Role::InternalInfill}, {"gap fill", Role::SolidInfill},
+    {"bridge", Role::BridgeInfill}, {"skirt", Role::Skirt}, {"support", Role::Support},
+    {"dense support", Role::SupportInterface}, {"raft", Role::Support}, {"prime pillar", Role::WipeTower},
+    {"ooze shield", Role::WipeTower},
+}};
+
 }  // namespace
+
+bool simplify3d_role(std::string_view name, Role& role) {
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.remove_suffix(1);
+    for (const auto& [n, r] : kSimplify3D)
+        if (iequal(n, name)) {
+            role = r;
+            return true;
+        }
+    return false;
+}
 
 Role role_from_name(std::string_view name) {
     while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.remove_suffix(1);

@@ -17,7 +17,6 @@ double width_from_e(double e_mm, double length_mm, double layer_height, double f
 
 namespace {
 
-constexpr double kZEps = 1e-4;
 
 bool extrudes(const gcode::Move& m) { return m.kind == gcode::MoveKind::Extrude; }
 
@@ -267,6 +266,7 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
             }
         }
         for (Segment& s : L.segments) {
+            L.slicer_support |= gcode::is_support(s.role);
             if (s.width > 0) continue;
             const gcode::Move& m = moves[s.move];
             double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);

@@ -37,6 +37,7 @@ struct Layer {
     std::vector<int> beneath;
     bool purge = false;        // printed before the first layer (a purge line): no support here
     double nominal_height = 0; // the slicer's stated height for this layer, 0 if none
+    bool slicer_support = false;  // holds support the slicer printed (a file sliced with support on)
     std::vector<Segment> segments;
 };
 
@@ -79,6 +80,9 @@ struct LayerStack {
                                 // and carry nominal heights
     BedMesh mesh;               // the levelling, where z_varies
 };
+
+// Layers nearer in z than this are one height.
+inline constexpr double kZEps = 1e-4;
 
 // Width of a bead from filament used, its length and layer height
 // (rectangle with rounded ends, as Slic3r/PrusaSlicer model it).

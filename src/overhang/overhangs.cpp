@@ -250,6 +250,24 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
     return drew;
 }
 
+// The layers below layer n holding the slicer's own support within reach
+// of it: three nominal layers, or the layer's own stated height (the
+// validator's window for support beneath).
+void slicer_support_beneath(const layers::LayerStack& stack, int n, double layer_height, std::vector<int>& out) {
+    out.clear();
+    const layers::Layer& layer = stack.layers[n];
+    for (int k = n - 1; k >= 0; --k) {
+        const layers::Layer& under = stack.layers[k];
+        const double dz = layer.z - under.z;
+        if (dz <= layers::kZEps) continue;
+        if (dz > 3 * layer_height + layers::kZEps && dz > layer.nominal_height + layers::kZEps) {
+            if (under.z < layer.z - 3 * layer_height - 1.0) break;
+            continue;
+        }
+        if (under.slicer_support) out.push_back(k);
+    }
+}
+
 // The overhang regions of layers [first, end), in layer order. Each layer's
 // depend on it and the layer beneath only, so ranges can run in parallel.
 void find_regions_in(const layers::LayerStack& stack, const Settings& s, const layers::BitGrid& proto, int first,
@@ -264,13 +282,20 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     layers::CellBox below_box, held_box, over_box;
     bool below_has_skirt = false, over_drawn = false;
     std::vector<int> below_layers;  // the layers drawn into `below`
+    // The slicer's own support in the file (a Simplify3D or Cura print
+    // sliced with support on): METHOD's "layer beneath" reaches three
+    // nominal layers down to it (the contact gap over support), and where it
+    // lies under this layer's model it is a contact tip (rule (c)).
+    std::vector<int> contact, contact_layers;  // layers with slicer support in reach; those drawn
+    layers::BitGrid tips = proto, model = proto;
     int over_index = -1;            // over_box is layer_box of layer over_index
     std::vector<Sample> samples;
     std::vector<std::pair<std::size_t, std::size_t>> pieces;  // first, last segment of each straight piece
     for (int n = first; n < end; ++n) {
         const layers::Layer& layer = stack.layers[n];
         if (layer.on_bed || layer.below < 0) continue;
-        if (layer.beneath != below_layers) {
+        slicer_support_beneath(stack, n, s.layer_height, contact);
+        if (layer.beneath != below_layers || contact != contact_layers) {
             below.clear(below_box);
             if (below_has_skirt) rim.clear(below_box);
             below_has_skirt = false;
@@ -288,7 +313,15 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
                     for (const layers::Segment& sg : stack.layers[k].segments)
                         if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
             }
+            for (int k : contact)
+                for (const layers::Segment& sg : stack.layers[k].segments)
+                    if (gcode::is_support(sg.role)) {
+                        below.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                        if (below_has_skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                    }
+            if (!contact.empty()) below_box = layers::CellBox{0, 0, below.width() - 1, below.height() - 1};
             below_layers = layer.beneath;
+            contact_layers = contact;
         }
         // The validator's reach, on the same cell lattice (make_grid): a bead
         // the validator holds is no overhang here, so no support goes under
@@ -317,6 +350,8 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         }
         for (std::size_t q = 0; q < pieces.size(); ++q) {
             const auto [k, last] = pieces[q];
+            // The slicer's own support is the slicer's: scaffold holds the model.
+            if (gcode::is_support(segs[k].role)) continue;
             const bool bridge = gcode::is_bridge(segs[k].role);
             // Corners: the path goes on from the piece before / into the next.
             // Most pieces are held throughout: nothing to draw, no corner to
@@ -330,6 +365,21 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
                                                               s.resolution, false, samples);
             over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.marked_bridge_limit : s.max_bridge,
                                          first_held, last_held, over, samples);
+        }
+        if (over_drawn && !contact.empty()) {
+            // Rule (c) for the slicer's contact tips, after (a) and (b) as
+            // the validator applies it: a tip holds what lies within the
+            // point radius of it.
+            tips.clear();
+            model.clear();
+            for (int k : contact)
+                for (const layers::Segment& sg : stack.layers[k].segments)
+                    if (gcode::is_support(sg.role)) tips.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            for (const layers::Segment& sg : segs)
+                if (!gcode::is_support(sg.role) && sg.role != gcode::Role::Skirt)
+                    model.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            tips &= model.dilated(s.resolution);
+            if (tips.any()) over.subtract(tips.dilated(s.point_radius));
         }
         // Over a hole enclosed by the layer beneath (sparse infill under a
         // skin) is held: the filled footprint counts, not just the beads.

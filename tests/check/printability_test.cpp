@@ -406,3 +406,23 @@ TEST(Check, ToolChangePurgeIsNoFailure) {
     EXPECT_EQ(r.start_code_problems, 1);
     EXPECT_EQ(r.e_jumps, 0);
 }
+
+// A file sliced with support on: the slicer's support stands on a layer of
+// air over the model and within the XY gap of a wall. Those faults are the
+// original's: with --original they are reported apart, and the model it
+// holds (the sheet across the contact gap) is held.
+TEST(Check, SlicersOwnSupportFaultsAreTheOriginals) {
+    const SynthGcode g = scaffold::testing::on_slicer_support("Support material");
+    auto alone = run(g);
+    EXPECT_FALSE(alone.ok());
+    EXPECT_GT(alone.unheld_support_mm2, 10);
+    EXPECT_GT(alone.collision_mm2, 0);
+    EXPECT_EQ(alone.unheld_model_mm2, 0) << check::report_text(alone);
+    const std::string original = g.str();
+    auto compared = run(g, &original);
+    EXPECT_TRUE(compared.ok()) << check::report_text(compared);
+    EXPECT_GT(compared.original_unheld_support_mm2, 10);
+    EXPECT_GT(compared.original_collision_mm2, 0);
+    EXPECT_EQ(compared.unheld_support_mm2, 0);
+    EXPECT_EQ(compared.collision_mm2, 0);
+}

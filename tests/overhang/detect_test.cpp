@@ -324,3 +324,21 @@ TEST(OverhangDetect, SkirtEnclosesNothing) {
     EXPECT_GE(f.points.points.size(), 4u);
     expect_covered(f, 3.5);
 }
+
+// The slicer's own support holds the model resting on it across its contact
+// gap (METHOD's three layers, rule (c)); that it stands on a layer of air
+// itself is the slicer's choice, not scaffold's to support. Typed as model,
+// the same beads overhang on both counts.
+TEST(OverhangDetect, SlicersOwnSupportHoldsAndNeedsNothing) {
+    const Found with = detect(scaffold::testing::on_slicer_support("Support material"));
+    EXPECT_TRUE(with.points.points.empty()) << with.points.points.size() << " points, the first at layer "
+                                            << with.points.points.front().layer;
+    const Found as_model = detect(scaffold::testing::on_slicer_support("Solid infill"));
+    bool floor = false, sheet = false;
+    for (const auto& p : as_model.points.points) {
+        floor |= p.layer == 6;  // layer 7, 0-based
+        sheet |= p.layer == 14;
+    }
+    EXPECT_TRUE(floor);
+    EXPECT_TRUE(sheet);
+}

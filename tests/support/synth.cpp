@@ -116,4 +116,24 @@ std::string SynthGcode::str() const {
     return out;
 }
 
+SynthGcode on_slicer_support(const char* support_role) {
+    SynthGcode g;
+    for (int l = 1; l <= 16; ++l) {
+        g.layer(0.2 * l);
+        g.type("External perimeter");
+        g.filled_rect(80, 100, 90, 110);
+        if (l <= 5) g.filled_rect(100, 100, 110, 110);
+        if (l <= 12) g.filled_rect(107.3, 103, 108.3, 107);
+        if (l >= 7 && l <= 12) {
+            g.type(support_role);
+            g.filled_rect(103, 103, 107, 107);
+        }
+        if (l >= 15) {
+            g.type("Solid infill");
+            g.filled_rect(102, 102, 108, 108);
+        }
+    }
+    return g;
+}
+
 }  // namespace scaffold::testing

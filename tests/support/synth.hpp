@@ -42,4 +42,11 @@ private:
     double x_ = 0, y_ = 0, z_ = 0, e_ = 0, prev_z_ = 0;
 };
 
+// A print sliced with the slicer's own support on, as Simplify3D leaves it:
+// a 10 x 10 mm base (layers 1-5), support (typed `support_role`) on it from
+// layer 7, one layer of air above the base, up to layer 12, 0.3 mm from a
+// wall of the model; a 6 x 6 mm sheet at layers 15-16 on the support's top
+// across a two-layer contact gap; a tower keeps the layers going.
+SynthGcode on_slicer_support(const char* support_role);
+
 }  // namespace scaffold::testing
