@@ -504,7 +504,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         // "Below": all material within one nominal layer, support within three.
         // A skirt loop holds what lies on it but must not count as the rim
         // of a hole: filled, it would "hold" everything inside it.
-        layers::BitGrid below = proto, skirt_below = proto, tips = proto;
+        layers::BitGrid below = proto, tips = proto;
+        std::vector<std::pair<int, bool>> beneath;  // the layers below, and whether their model counts
         bool have_below = false;
         for (int k = L - 1; k >= 0; --k) {
             double dz = layer.z - stack.layers[k].z;
@@ -518,10 +519,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             below |= g.slicer;
             tips |= g.support;  // support on the three layers below: a tip where it lies under this layer's model
             tips |= g.slicer;
-            if (dz <= std::max(h_nom, layer.nominal_height) + kZEps || k == layer.below) {
-                below |= g.model;
-                skirt_below |= g.skirt;
-            }
+            const bool model_too = dz <= std::max(h_nom, layer.nominal_height) + kZEps || k == layer.below;
+            if (model_too) below |= g.model;
+            beneath.emplace_back(k, model_too);
             have_below = true;
         }
         if (!have_below && layer.below >= 0) {
@@ -529,17 +529,21 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             below |= g.model;
             below |= g.support;
             below |= g.slicer;
-            skirt_below |= g.skirt;
             tips |= g.support;
             tips |= g.slicer;
+            beneath.emplace_back(layer.below, true);
         }
         // METHOD's rule (c): a contact tip of this layer is support that lies
         // directly under model material of this layer (within one cell). A
         // tip that touches the model only higher up holds nothing here.
         tips &= here.model.dilated(o.resolution);
+        // Rule (a)'s reach from the beads themselves (layers::draw_reach).
         const double reach = layer.height * slope + o.resolution / 2;
-        skirt_below |= below;
-        const layers::BitGrid held_grid = skirt_below.dilated(reach);
+        layers::BitGrid held_grid = proto;
+        for (const auto& [k, model_too] : beneath)
+            for (const auto& sg : stack.layers[k].segments)
+                if (model_too || is_support_move(out.moves[sg.move]))
+                    held_grid.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 2 * reach);
 
         // (a) per centre-line sample, then holes enclosed by the layer beneath.
         const auto& segs = layer.segments;

@@ -121,10 +121,14 @@ BedMesh bed_mesh(const gcode::Program& program, const LayerStack& stack) {
 
 double BedMesh::at(double x, double y) const {
     if (empty()) return 0;
-    const double fx = std::clamp((x - x0) / cell - 0.5, 0.0, nx - 1.0), fy = std::clamp((y - y0) / cell - 0.5, 0.0, ny - 1.0);
-    const int i = std::min(static_cast<int>(fx), nx - 1), j = std::min(static_cast<int>(fy), ny - 1);
+    // Linear on past the outer cell centres by up to a cell (support beside
+    // the model's edge: a tilted bed goes on tilting), then flat.
+    const double fx = std::clamp((x - x0) / cell - 0.5, -1.0, static_cast<double>(nx)),
+                 fy = std::clamp((y - y0) / cell - 0.5, -1.0, static_cast<double>(ny));
+    const int i = std::clamp(static_cast<int>(std::floor(fx)), 0, std::max(0, nx - 2)),
+              j = std::clamp(static_cast<int>(std::floor(fy)), 0, std::max(0, ny - 2));
     const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
-    const double tx = fx - i, ty = fy - j;
+    const double tx = i1 > i ? fx - i : 0, ty = j1 > j ? fy - j : 0;
     auto v = [&](int a, int b) { return offset[static_cast<std::size_t>(b) * nx + a]; };
     return (v(i, j) * (1 - tx) + v(i1, j) * tx) * (1 - ty) + (v(i, j1) * (1 - tx) + v(i1, j1) * tx) * ty;
 }

@@ -67,7 +67,8 @@ struct BedMesh {
     int nx = 0, ny = 0;
     std::vector<double> offset;  // nx * ny, every cell filled
     bool empty() const { return offset.empty(); }
-    // Bilinear between cell centres, clamped at the edges.
+    // Bilinear between cell centres, linear on for a cell past the outer
+    // ones (a tilted bed goes on tilting beside the model), flat beyond.
     double at(double x, double y) const;
 };
 

@@ -20,6 +20,13 @@ struct CellBox {
     CellBox grown(int n) const { return empty() ? *this : CellBox{i0 - n, j0 - n, i1 + n, j1 + n}; }
 };
 
+// The smallest box holding both.
+inline CellBox united(const CellBox& a, const CellBox& b) {
+    if (a.empty()) return b;
+    if (b.empty()) return a;
+    return {a.i0 < b.i0 ? a.i0 : b.i0, a.j0 < b.j0 ? a.j0 : b.j0, a.i1 > b.i1 ? a.i1 : b.i1, a.j1 > b.j1 ? a.j1 : b.j1};
+}
+
 // Sets cells i0..i1 of a row of 64-bit words, all inside the row; none
 // when i0 > i1.
 inline void or_span(std::uint64_t* row, int i0, int i1) {
@@ -144,6 +151,11 @@ void draw_layer(BitGrid& grid, const Layer& layer);
 // The cells draw_layer (or drawing any part of its segments at their
 // width) can set, clipped to the grid.
 CellBox layer_box(const BitGrid& grid, const Layer& layer);
+// What METHOD's rule (a) holds above the layer: every cell whose centre
+// lies within `reach` of one of its beads (of its support only, if asked),
+// measured from the bead itself rather than from the cells it covers, which
+// fall up to a cell short of its edge. Returns the box that can have changed.
+CellBox draw_reach(BitGrid& grid, const Layer& layer, double reach, bool support_only = false);
 
 // The set cells as SVG: one <rect> per horizontal run, in cell units with
 // y pointing up (row 0 at the bottom), inside a <g fill="...">.

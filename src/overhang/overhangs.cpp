@@ -302,8 +302,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             below_box = {};
             for (int k : layer.beneath) {
                 const layers::Layer& under = stack.layers[k];
-                const layers::CellBox b = k == over_index ? over_box : layers::layer_box(below, under);
-                below_box = below_box.empty() ? b : b.empty() ? below_box : layers::CellBox{std::min(below_box.i0, b.i0), std::min(below_box.j0, b.j0), std::max(below_box.i1, b.i1), std::max(below_box.j1, b.j1)};
+                below_box = layers::united(below_box, k == over_index ? over_box : layers::layer_box(below, under));
                 layers::draw_layer(below, under);
                 below_has_skirt |= std::any_of(under.segments.begin(), under.segments.end(),
                                                [](const layers::Segment& sg) { return sg.role == gcode::Role::Skirt; });
@@ -327,7 +326,10 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         // the validator holds is no overhang here, so no support goes under
         // raster noise (a 0.1 mm sliver along every layer's edge).
         held.clear(held_box);
-        held_box = below.dilate_into(held, layer.height * slope + s.resolution / 2, below_box);
+        held_box = {};
+        const double reach = layer.height * slope + s.resolution / 2;
+        for (int k : layer.beneath) held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach));
+        for (int k : contact) held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach, true));
         if (over_drawn) over.clear(over_box);
         over_box = layers::layer_box(over, layer);
         over_index = n;

@@ -329,6 +329,9 @@ TEST(Dialects, SupportFollowsTheBedMeshOfALevelledFile) {
     ASSERT_FALSE(p.stack.mesh.empty());
     for (double x : {102.0, 120.0, 138.0})
         for (double y : {101.0, 109.0}) EXPECT_NEAR(p.stack.mesh.at(x, y), offset(x, y), 0.03) << x << "," << y;
+    // Beside the model (a pillar's loop 1 mm past its edge) the tilt goes on.
+    for (double x : {99.0, 141.0})
+        for (double y : {99.0, 111.0}) EXPECT_NEAR(p.stack.mesh.at(x, y), offset(x, y), 0.02) << x << "," << y;
 }
 
 // Sequential printing (complete objects) without its setting: one object up

@@ -146,14 +146,15 @@ TEST(OverhangStack, AreaIsTheKeptCells) {
     EXPECT_DOUBLE_EQ(o.area_mm2, ol.area_mm2);
     EXPECT_NEAR(o.area_mm2, 200, 12);
     // Beads are held where their centre line is within reach of layer 0's
-    // material (lines to x = 9.8, 0.45 wide, reach ~0.24): the overhang
-    // starts about half a bead before x = 10.25 and never over layer 0's lines.
+    // material (lines to x = 9.8, 0.45 wide, so material to 10.025; reach
+    // 0.2 tan(55 deg) + half a cell = 0.336): the overhang starts at the
+    // first unheld sample past x = 10.36, never over layer 0's lines.
     double min_x = 1e9;
     for (int j = 0; j < ol.cells.height(); ++j)
         for (int i = 0; i < ol.cells.width(); ++i)
             if (ol.cells.get(i, j)) min_x = std::min(min_x, ol.cells.cx(i));
-    EXPECT_GT(min_x, 9.8);
-    EXPECT_LT(min_x, 10.3);
+    EXPECT_GT(min_x, 10.3);
+    EXPECT_LT(min_x, 10.45);
 }
 
 TEST(OverhangPoints, EveryRegionCoveredByPointsOnItsCells) {
