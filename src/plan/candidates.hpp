@@ -55,6 +55,9 @@ struct ModelView {
     // The disc touches the model on the first layer above z (the layer a
     // support point's tip holds); empty: always.
     std::function<bool(double z, double x, double y, double r)> touches_above;
+    // A bar at height z would be trapped in a hollow of the model (plan/
+    // cavities); empty: never.
+    std::function<bool(double z, double x0, double y0, double x1, double y1)> bar_trapped;
 
     // Largest layer top <= z (z itself without layers); < 0 when none.
     double snap_down(double z) const;

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <utility>
 
+#include "plan/cavities.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
 
@@ -95,7 +96,8 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         double l_max = 0;
         // Ends first (cached), then connectors until too many have failed
         // for the gain to stay positive.
-        bool ok = search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
+        bool ok = !(m.bar_trapped && m.bar_trapped(c->z, c->x0, c->y0, c->x1, c->y1)) &&
+                  search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
         for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
             const int id = c->carried[i];
             if (auto col = connector(*c, search.active(id), m, s)) {
@@ -265,6 +267,13 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     m.end_stands = [&](double x, double y, double z) {
         int above = by_z.above(z);
         return above >= 0 && drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, false).has_value();
+    };
+    // Bars that would be trapped in a hollow of the model are no bridges:
+    // the hollows are mapped when the first bar is taken.
+    std::optional<Cavities> cavities;
+    m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
+        if (!cavities) cavities.emplace(stack, s);
+        return cavities->bar_trapped(x0, y0, x1, y1, z);
     };
     std::vector<Active> start;
     for (int i : canonical_order(points)) {

@@ -1,0 +1,75 @@
+#include <gtest/gtest.h>
+
+#include "plan/cavities.hpp"
+#include "plan/obstacles.hpp"
+#include "plan/planner.hpp"
+#include "support/stacks.hpp"
+
+using namespace scaffold;
+using scaffold::test::bead;
+
+namespace {
+
+// A cabin: walls around x 0..20, y 0..12 up to z 26, windows in both long
+// walls (x 7..13, z 14..20), and, if asked, a roof on top (z 26.4).
+layers::LayerStack cabin(bool roof) {
+    return test::stack_of(
+        roof ? 132 : 130,
+        [](int i, layers::Layer& l) {
+            const double z = 0.2 * (i + 1);
+            if (z > 26 + 1e-9) {
+                for (double x = 0.2; x < 20; x += 0.45) bead(l, x, 0, x, 12, gcode::Role::SolidInfill);
+                return;
+            }
+            const bool window = z > 14 + 1e-9 && z <= 20 + 1e-9;
+            for (double y : {0.0, 12.0}) {
+                if (window) {
+                    bead(l, 0, y, 7, y, gcode::Role::Perimeter);
+                    bead(l, 13, y, 20, y, gcode::Role::Perimeter);
+                } else {
+                    bead(l, 0, y, 20, y, gcode::Role::Perimeter);
+                }
+            }
+            bead(l, 0, 0, 0, 12, gcode::Role::Perimeter);
+            bead(l, 20, 0, 20, 12, gcode::Role::Perimeter);
+        },
+        {-5, -5, 30, 20});
+}
+
+}  // namespace
+
+TEST(Cavities, InsideARoofedHollowIsTrapped) {
+    Settings s;
+    const plan::Cavities roofed(cabin(true), s), open(cabin(false), s);
+    EXPECT_TRUE(roofed.trapped(10, 6, 17, plan::Cavities::kReach));
+    EXPECT_FALSE(open.trapped(10, 6, 17, plan::Cavities::kReach));   // a cup: lifted out
+    EXPECT_FALSE(roofed.trapped(10, 0, 17, plan::Cavities::kReach)); // in the wall's plane (the window)
+    EXPECT_FALSE(roofed.trapped(25, 6, 17, plan::Cavities::kReach)); // beside the cabin
+    EXPECT_FALSE(roofed.trapped(10, 6, 27, plan::Cavities::kReach)); // above the roof
+    EXPECT_TRUE(roofed.bar_trapped(10, 0, 10, 12, 17));
+    EXPECT_FALSE(open.bar_trapped(10, 0, 10, 12, 17));
+    EXPECT_FALSE(roofed.bar_trapped(-3, 0, -3, 12, 17));
+}
+
+// Two points under each window's lintel: without a roof the best bridge
+// runs across the cabin from window to window; under a roof it would be
+// trapped inside, and each window's points get pillars on its sill.
+TEST(Cavities, NoBridgeAcrossARoofedCabin) {
+    Settings s;
+    overhang::SupportPoints pts;
+    for (double y : {0.0, 12.0})
+        for (double x : {9.0, 11.0}) pts.points.push_back({x, y, 20.0, 100});
+    for (bool roof : {false, true}) {
+        const layers::LayerStack st = cabin(roof);
+        plan::Obstacles obs(st, s);
+        const plan::Scaffold sc = plan::plan_scaffold(pts, st, obs, s);
+        EXPECT_TRUE(sc.dropped_points.empty());
+        if (!roof) {
+            ASSERT_EQ(sc.bridges.size(), 1u);
+            EXPECT_LT(std::min(sc.bridges[0].y0, sc.bridges[0].y1), 2);
+            EXPECT_GT(std::max(sc.bridges[0].y0, sc.bridges[0].y1), 10);
+        } else {
+            EXPECT_TRUE(sc.bridges.empty());
+        }
+    }
+}
