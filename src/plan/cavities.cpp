@@ -10,8 +10,6 @@ namespace scaffold::plan {
 
 namespace {
 
-int band_of(double z) { return std::clamp(static_cast<int>(std::floor(z / Cavities::kBand)), 0, 63); }
-
 // How many of cells a..b (inclusive) of a row are set.
 int count_in(const std::uint64_t* row, int a, int b) {
     int n = 0;
@@ -33,14 +31,19 @@ Cavities::Cavities(const layers::LayerStack& stack, const Settings& settings) {
     // Whole fine cells a coarse one, so a coarse cell is a run of each row.
     const int per = std::max(1, static_cast<int>(std::lround(kCell / proto.cell())));
     cell_ = per * proto.cell();
-    nx_ = (proto.width() + per - 1) / per;
-    ny_ = (proto.height() + per - 1) / per;
-    enclosed_.assign(static_cast<std::size_t>(nx_) * ny_, 0);
-    top_.assign(static_cast<std::size_t>(nx_) * ny_, 0.0f);
+    nx_ = static_cast<std::size_t>((proto.width() + per - 1) / per);
+    ny_ = static_cast<std::size_t>((proto.height() + per - 1) / per);
+    top_.assign(nx_ * ny_, 0.0f);
+    std::vector<int> order;  // the layers by rising z, without purge lines
+    for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
+        if (!stack.layers[i].purge) order.push_back(i);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return stack.layers[a].z < stack.layers[b].z; });
+    states_.assign((order.size() * nx_ * ny_ * 2 + 63) / 64, 0);
     layers::BitGrid material = proto;
     std::vector<int> hole_count;  // per coarse cell of the layer's box
-    for (const layers::Layer& layer : stack.layers) {
-        if (layer.purge) continue;
+    for (std::size_t n = 0; n < order.size(); ++n) {
+        const layers::Layer& layer = stack.layers[order[n]];
+        z_.push_back(layer.z);
         material.clear();
         bool any = false;
         // The model's own beads: a skirt encloses nothing, the slicer's own
@@ -53,45 +56,62 @@ Cavities::Cavities(const layers::LayerStack& stack, const Settings& settings) {
         if (!any) continue;
         layers::BitGrid holes = material.filled();
         holes.subtract(material);
-        const std::uint64_t bit = std::uint64_t{1} << band_of(layer.z);
         const float z = static_cast<float>(layer.z);
-        // Per coarse cell: any material, and whether every fine cell of it
+        // Per coarse cell: any material, else whether every fine cell of it
         // lies in a hole (a cell a wall runs through is no hollow).
         const layers::CellBox box = layers::layer_box(material, layer);
-        const int I0 = box.i0 / per, I1 = std::min(nx_ - 1, box.i1 / per);
-        const int J0 = box.j0 / per, J1 = std::min(ny_ - 1, box.j1 / per);
+        const int I0 = box.i0 / per, I1 = std::min(static_cast<int>(nx_) - 1, box.i1 / per);
+        const int J0 = box.j0 / per, J1 = std::min(static_cast<int>(ny_) - 1, box.j1 / per);
         if (I1 < I0 || J1 < J0) continue;
-        hole_count.assign(static_cast<std::size_t>(I1 - I0 + 1) * (J1 - J0 + 1), 0);
+        const std::size_t w = static_cast<std::size_t>(I1 - I0 + 1);
+        hole_count.assign(w * static_cast<std::size_t>(J1 - J0 + 1), 0);
+        std::vector<char> solid(hole_count.size(), 0);
         for (int j = J0 * per; j <= std::min(proto.height() - 1, J1 * per + per - 1); ++j) {
             const std::uint64_t* m = material.row_words(j);
             const std::uint64_t* h = holes.row_words(j);
-            const int J = j / per;
             for (int I = I0; I <= I1; ++I) {
                 const int a = I * per, b = std::min(a + per, proto.width()) - 1;
-                const std::size_t k = static_cast<std::size_t>(J) * nx_ + I;
-                hole_count[static_cast<std::size_t>(J - J0) * (I1 - I0 + 1) + (I - I0)] += count_in(h, a, b);
-                if (top_[k] < z && count_in(m, a, b)) top_[k] = z;
+                const std::size_t k = static_cast<std::size_t>(j / per - J0) * w + static_cast<std::size_t>(I - I0);
+                hole_count[k] += count_in(h, a, b);
+                solid[k] |= count_in(m, a, b) > 0;
             }
         }
         for (int J = J0; J <= J1; ++J)
-            for (int I = I0; I <= I1; ++I)
-                if (hole_count[static_cast<std::size_t>(J - J0) * (I1 - I0 + 1) + (I - I0)] == per * per)
-                    enclosed_[static_cast<std::size_t>(J) * nx_ + I] |= bit;
+            for (int I = I0; I <= I1; ++I) {
+                const std::size_t k = static_cast<std::size_t>(J - J0) * w + static_cast<std::size_t>(I - I0);
+                const std::size_t cell = static_cast<std::size_t>(J) * nx_ + static_cast<std::size_t>(I);
+                const std::uint64_t s = solid[k] ? Material : hole_count[k] == per * per ? Hole : Air;
+                if (s == Air) continue;
+                const std::size_t bit = (n * nx_ * ny_ + cell) * 2;
+                states_[bit >> 6] |= s << (bit & 63);
+                if (s == Material && top_[cell] < z) top_[cell] = z;
+            }
     }
 }
 
 int Cavities::index(double x, double y) const {
-    const int i = static_cast<int>(std::floor((x - x0_) / cell_)), j = static_cast<int>(std::floor((y - y0_) / cell_));
-    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return -1;
-    return j * nx_ + i;
+    const double fi = std::floor((x - x0_) / cell_), fj = std::floor((y - y0_) / cell_);
+    if (!(fi >= 0 && fj >= 0 && fi < static_cast<double>(nx_) && fj < static_cast<double>(ny_))) return -1;
+    return static_cast<int>(fj) * static_cast<int>(nx_) + static_cast<int>(fi);
 }
 
 bool Cavities::trapped(double x, double y, double z, double reach) const {
     const int k = index(x, y);
     if (k < 0 || top_[k] <= z) return false;
-    const int b0 = band_of(z - reach), b1 = band_of(z + reach);
-    const std::uint64_t bands = (b1 == 63 ? ~std::uint64_t{0} : (std::uint64_t{1} << (b1 + 1)) - 1) & ~((std::uint64_t{1} << b0) - 1);
-    return (enclosed_[k] & bands) != 0;
+    // From z through air, down and then up: the first layer that is not air
+    // at the cell, within reach.
+    const std::size_t from = static_cast<std::size_t>(std::upper_bound(z_.begin(), z_.end(), z + 1e-6) - z_.begin());
+    for (std::size_t n = from; n-- > 0 && z_[n] >= z - reach;) {
+        const State s = state(n, k);
+        if (s == Hole) return true;
+        if (s == Material) break;
+    }
+    for (std::size_t n = from; n < z_.size() && z_[n] <= z + reach; ++n) {
+        const State s = state(n, k);
+        if (s == Hole) return true;
+        if (s == Material) break;
+    }
+    return false;
 }
 
 bool Cavities::bar_trapped(double x0, double y0, double x1, double y1, double z) const {

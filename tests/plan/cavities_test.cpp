@@ -36,7 +36,42 @@ layers::LayerStack cabin(bool roof) {
         {-5, -5, 30, 20});
 }
 
+// A solid block (x 0..20, y 0..12, to z 10) and a slab over it (z 17..20),
+// each a ring with sparse infill (a 3 mm grid: holes the ring encloses)
+// between solid bottom and top layers; air between them.
+layers::LayerStack block_and_slab() {
+    return test::stack_of(
+        100,
+        [](int i, layers::Layer& l) {
+            const double z = 0.2 * (i + 1);
+            const bool block = z <= 10 + 1e-9, slab = z > 17 + 1e-9;
+            if (!block && !slab) {
+                bead(l, 40, 0, 41, 0, gcode::Role::Perimeter);  // something far away keeps the layer
+                return;
+            }
+            const bool solid = (block && (z <= 1 + 1e-9 || z > 9 + 1e-9)) || (slab && (z <= 18 + 1e-9 || z > 19.4 + 1e-9));
+            for (double y : {0.0, 12.0}) bead(l, 0, y, 20, y, gcode::Role::Perimeter);
+            for (double x : {0.0, 20.0}) bead(l, x, 0, x, 12, gcode::Role::Perimeter);
+            if (solid) {
+                for (double y = 0.45; y < 12; y += 0.45) bead(l, 0, y, 20, y, gcode::Role::SolidInfill);
+            } else {
+                for (double x = 3; x < 20; x += 3) bead(l, x, 0, x, 12, gcode::Role::InternalInfill);
+                for (double y = 3; y < 12; y += 3) bead(l, 0, y, 20, y, gcode::Role::InternalInfill);
+            }
+        },
+        {-5, -5, 45, 20});
+}
+
 }  // namespace
+
+// Under an overhang, above a part's top: the holes of either part's sparse
+// infill lie behind its solid skin, no hollow the bar is in.
+TEST(Cavities, InfillHolesBehindASkinAreNoHollow) {
+    Settings s;
+    const plan::Cavities c(block_and_slab(), s);
+    EXPECT_FALSE(c.trapped(10, 6, 13, plan::Cavities::kReach));
+    EXPECT_FALSE(c.bar_trapped(1, 6, 19, 6, 13));
+}
 
 TEST(Cavities, InsideARoofedHollowIsTrapped) {
     Settings s;
