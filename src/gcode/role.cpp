@@ -57,6 +57,8 @@ constexpr std::array<std::pair<std::string_view, Role>, 12> kSimplify3D{{
 
 bool simplify3d_role(std::string_view name, Role& role) {
     while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.remove_suffix(1);
+    // Simplify3D 4.1 and 5 write "; feature outer perimeter".
+    if (name.size() > 8 && iequal(name.substr(0, 8), "feature ")) name.remove_prefix(8);
     for (const auto& [n, r] : kSimplify3D)
         if (iequal(n, name)) {
             role = r;
