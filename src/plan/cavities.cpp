@@ -98,14 +98,12 @@ int Cavities::index(double x, double y) const {
 bool Cavities::trapped(double x, double y, double z, double reach) const {
     const int k = index(x, y);
     if (k < 0 || top_[k] <= z) return false;
-    // From z through air, down and then up: the first layer that is not air
-    // at the cell, within reach.
+    // Up from z through air: the first layer that is not air at the cell,
+    // within reach. Walls that close around it under the roof make a box;
+    // a roof or a lip met first leaves the way out sideways open, and what
+    // walls in the cell lower down (a hull around a cabin's deck, the
+    // infill of a part under the bar) is below, not around, the bar.
     const std::size_t from = static_cast<std::size_t>(std::upper_bound(z_.begin(), z_.end(), z + 1e-6) - z_.begin());
-    for (std::size_t n = from; n-- > 0 && z_[n] >= z - reach;) {
-        const State s = state(n, k);
-        if (s == Hole) return true;
-        if (s == Material) break;
-    }
     for (std::size_t n = from; n < z_.size() && z_[n] <= z + reach; ++n) {
         const State s = state(n, k);
         if (s == Hole) return true;
@@ -115,11 +113,11 @@ bool Cavities::trapped(double x, double y, double z, double reach) const {
 }
 
 bool Cavities::bar_trapped(double x0, double y0, double x1, double y1, double z) const {
+    // End to end: an end's pillar inside the hollow is as trapped as the bar.
     const double len = std::hypot(x1 - x0, y1 - y0);
-    if (len <= 2 * kEndClear) return false;
-    const int steps = static_cast<int>(std::ceil((len - 2 * kEndClear) / (cell_ / 2)));
+    const int steps = std::max(1, static_cast<int>(std::ceil(len / (cell_ / 2))));
     for (int s = 0; s <= steps; ++s) {
-        const double t = (kEndClear + (len - 2 * kEndClear) * s / steps) / len;
+        const double t = static_cast<double>(s) / steps;
         if (trapped(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, z, kReach)) return true;
     }
     return false;

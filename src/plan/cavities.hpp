@@ -1,8 +1,8 @@
 #pragma once
-// Where support would be trapped inside the model: a bridge bar over the
-// air inside a hollow that the model walls in below it and roofs over above
-// it (a boat's cabin, a box with windows) could only be broken out through
-// the openings. Answered on a coarse grid: per layer, whether a cell holds
+// Where support would be trapped inside the model: a bridge bar in a
+// hollow that the model walls in above it and roofs over (a boat's cabin,
+// a box with windows and a door) could only be broken out through the
+// openings. Answered on a coarse grid: per layer, whether a cell holds
 // material or lies wholly in a hole the layer's material encloses; per cell,
 // the highest material over it.
 #include <cstdint>
@@ -18,17 +18,17 @@ public:
     Cavities(const layers::LayerStack& stack, const Settings& settings);
 
     // Whether (x, y) at height z lies under model material higher up and,
-    // going down or up from z through air, meets a layer that walls it in
-    // within `reach` mm (before it meets material: a top surface, or the
-    // infill holes of a part under it or over it, are no hollow).
+    // going up from z through air, meets a layer that walls it in within
+    // `reach` mm, before any material (a roof or a lip met first leaves the
+    // way out sideways open; the infill holes of a part over it lie behind
+    // its skin).
     bool trapped(double x, double y, double z, double reach) const;
-    // Whether the bar from (x0, y0) to (x1, y1) at height z crosses such a
-    // hollow away from its ends (the ends stand where pillars do).
+    // Whether the bar from (x0, y0) to (x1, y1) at height z, ends included,
+    // crosses such a hollow.
     bool bar_trapped(double x0, double y0, double x1, double y1, double z) const;
 
     static constexpr double kCell = 1.0;      // mm, of the coarse grid (whole fine cells)
-    static constexpr double kReach = 10.0;    // mm below or above the bar a wall may close the hollow
-    static constexpr double kEndClear = 2.0;  // mm of a bar at each end not asked about
+    static constexpr double kReach = 10.0;    // mm above the bar walls may close the hollow
 
 private:
     enum State : std::uint8_t { Air = 0, Material = 1, Hole = 2 };

@@ -36,6 +36,22 @@ layers::LayerStack cabin(bool roof) {
         {-5, -5, 30, 20});
 }
 
+// The cabin in a hull: a ring of wall around it (x -10..30, y -8..20) up to
+// z 10, open on top, and a roof 4 mm wider than the cabin all round.
+layers::LayerStack cabin_in_a_hull() {
+    layers::LayerStack st = cabin(true);
+    for (layers::Layer& l : st.layers) {
+        if (l.z <= 10 + 1e-9) {
+            for (double y : {-8.0, 20.0}) bead(l, -10, y, 30, y, gcode::Role::Perimeter);
+            for (double x : {-10.0, 30.0}) bead(l, x, -8, x, 20, gcode::Role::Perimeter);
+        }
+        if (l.z > 26 + 1e-9)
+            for (double x = -3.8; x < 24; x += 0.45) bead(l, x, -4, x, 16, gcode::Role::SolidInfill);
+    }
+    st.bounds = {-15, -12, 35, 25};
+    return st;
+}
+
 // A solid block (x 0..20, y 0..12, to z 10) and a slab over it (z 17..20),
 // each a ring with sparse infill (a 3 mm grid: holes the ring encloses)
 // between solid bottom and top layers; air between them.
@@ -108,3 +124,14 @@ TEST(Cavities, NoBridgeAcrossARoofedCabin) {
         }
     }
 }
+
+// Beside the cabin under its roof's lip, inside the hull's ring lower down:
+// the lip is met first going up, the way out sideways is open.
+TEST(Cavities, UnderALipBesideTheCabinIsOpen) {
+    Settings s;
+    const plan::Cavities c(cabin_in_a_hull(), s);
+    EXPECT_TRUE(c.trapped(10, 6, 17, plan::Cavities::kReach));
+    EXPECT_FALSE(c.trapped(10, -2.5, 17, plan::Cavities::kReach));
+    EXPECT_FALSE(c.bar_trapped(2, -2.5, 18, -2.5, 17));
+}
+
