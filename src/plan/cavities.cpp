@@ -1,7 +1,6 @@
 #include "plan/cavities.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 
 #include "layers/raster.hpp"
@@ -10,22 +9,33 @@ namespace scaffold::plan {
 
 namespace {
 
-// How many of cells a..b (inclusive) of a row are set.
-int count_in(const std::uint64_t* row, int a, int b) {
-    int n = 0;
+// The bits of cells a..b (inclusive) of a row in word w.
+std::uint64_t span_mask(int w, int a, int b) {
+    std::uint64_t mask = ~std::uint64_t{0};
+    if (w == a >> 6) mask &= ~std::uint64_t{0} << (a & 63);
+    if (w == b >> 6) mask &= ~std::uint64_t{0} >> (63 - (b & 63));
+    return mask;
+}
+
+bool any_in(const std::uint64_t* row, int a, int b) {
+    for (int w = a >> 6; w <= b >> 6; ++w)
+        if (row[w] & span_mask(w, a, b)) return true;
+    return false;
+}
+
+bool all_in(const std::uint64_t* row, int a, int b) {
     for (int w = a >> 6; w <= b >> 6; ++w) {
-        std::uint64_t mask = ~std::uint64_t{0};
-        if (w == a >> 6) mask &= ~std::uint64_t{0} << (a & 63);
-        if (w == b >> 6) mask &= ~std::uint64_t{0} >> (63 - (b & 63));
-        n += std::popcount(row[w] & mask);
+        const std::uint64_t m = span_mask(w, a, b);
+        if ((row[w] & m) != m) return false;
     }
-    return n;
+    return true;
 }
 
 }  // namespace
 
-Cavities::Cavities(const layers::LayerStack& stack, const Settings& settings) {
-    const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 2.0);
+Cavities::Cavities(const layers::LayerStack& stack, const Obstacles& obstacles) {
+    if (stack.layers.empty()) return;
+    const layers::BitGrid proto = obstacles.footprint(0).empty_like();
     x0_ = proto.origin_x();
     y0_ = proto.origin_y();
     // Whole fine cells a coarse one, so a coarse cell is a run of each row.
@@ -40,7 +50,9 @@ Cavities::Cavities(const layers::LayerStack& stack, const Settings& settings) {
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return stack.layers[a].z < stack.layers[b].z; });
     states_.assign((order.size() * nx_ * ny_ * 2 + 63) / 64, 0);
     layers::BitGrid material = proto;
-    std::vector<int> hole_count;  // per coarse cell of the layer's box
+    // A coarse row's fine rows: ORed material, ANDed holes.
+    std::vector<std::uint64_t> any_material(static_cast<std::size_t>(proto.words_per_row()), 0),
+        all_holes(static_cast<std::size_t>(proto.words_per_row()), 0);
     for (std::size_t n = 0; n < order.size(); ++n) {
         const layers::Layer& layer = stack.layers[order[n]];
         z_.push_back(layer.z);
@@ -54,38 +66,43 @@ Cavities::Cavities(const layers::LayerStack& stack, const Settings& settings) {
                 any = true;
             }
         if (!any) continue;
-        layers::BitGrid holes = material.filled();
+        layers::BitGrid holes = obstacles.footprint(order[n]);
         holes.subtract(material);
         const float z = static_cast<float>(layer.z);
         // Per coarse cell: any material, else whether every fine cell of it
-        // lies in a hole (a cell a wall runs through is no hollow).
+        // lies in a hole (a cell a wall runs through is no hollow): the rows
+        // of a coarse row ORed (material) and ANDed (holes), then the spans.
         const layers::CellBox box = layers::layer_box(material, layer);
         const int I0 = box.i0 / per, I1 = std::min(static_cast<int>(nx_) - 1, box.i1 / per);
         const int J0 = box.j0 / per, J1 = std::min(static_cast<int>(ny_) - 1, box.j1 / per);
         if (I1 < I0 || J1 < J0) continue;
-        const std::size_t w = static_cast<std::size_t>(I1 - I0 + 1);
-        hole_count.assign(w * static_cast<std::size_t>(J1 - J0 + 1), 0);
-        std::vector<char> solid(hole_count.size(), 0);
-        for (int j = J0 * per; j <= std::min(proto.height() - 1, J1 * per + per - 1); ++j) {
-            const std::uint64_t* m = material.row_words(j);
-            const std::uint64_t* h = holes.row_words(j);
+        const int w0 = (I0 * per) >> 6, w1 = std::min(proto.words_per_row() - 1, (I1 * per + per - 1) >> 6);
+        for (int J = J0; J <= J1; ++J) {
+            std::fill(any_material.begin() + w0, any_material.begin() + w1 + 1, 0);
+            std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, ~std::uint64_t{0});
+            for (int j = J * per; j < J * per + per; ++j) {
+                if (j >= proto.height()) {  // past the grid's last row: no hole
+                    std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, 0);
+                    break;
+                }
+                const std::uint64_t* m = material.row_words(j);
+                const std::uint64_t* h = holes.row_words(j);
+                for (int w = w0; w <= w1; ++w) {
+                    any_material[w] |= m[w];
+                    all_holes[w] &= h[w];
+                }
+            }
             for (int I = I0; I <= I1; ++I) {
                 const int a = I * per, b = std::min(a + per, proto.width()) - 1;
-                const std::size_t k = static_cast<std::size_t>(j / per - J0) * w + static_cast<std::size_t>(I - I0);
-                hole_count[k] += count_in(h, a, b);
-                solid[k] |= count_in(m, a, b) > 0;
+                const bool solid = any_in(any_material.data(), a, b);
+                if (!solid && !all_in(all_holes.data(), a, b)) continue;
+                const std::size_t cell = static_cast<std::size_t>(J) * nx_ + static_cast<std::size_t>(I);
+                const std::uint64_t st = solid ? Material : Hole;
+                const std::size_t bit = (n * nx_ * ny_ + cell) * 2;
+                states_[bit >> 6] |= st << (bit & 63);
+                if (solid && top_[cell] < z) top_[cell] = z;
             }
         }
-        for (int J = J0; J <= J1; ++J)
-            for (int I = I0; I <= I1; ++I) {
-                const std::size_t k = static_cast<std::size_t>(J - J0) * w + static_cast<std::size_t>(I - I0);
-                const std::size_t cell = static_cast<std::size_t>(J) * nx_ + static_cast<std::size_t>(I);
-                const std::uint64_t s = solid[k] ? Material : hole_count[k] == per * per ? Hole : Air;
-                if (s == Air) continue;
-                const std::size_t bit = (n * nx_ * ny_ + cell) * 2;
-                states_[bit >> 6] |= s << (bit & 63);
-                if (s == Material && top_[cell] < z) top_[cell] = z;
-            }
     }
 }
 

@@ -10,12 +10,14 @@
 
 #include "gcode/settings.hpp"
 #include "layers/layer_stack.hpp"
+#include "plan/obstacles.hpp"
 
 namespace scaffold::plan {
 
 class Cavities {
 public:
-    Cavities(const layers::LayerStack& stack, const Settings& settings);
+    // From the obstacles' filled footprints (the holes their material encloses).
+    Cavities(const layers::LayerStack& stack, const Obstacles& obstacles);
 
     // Whether (x, y) at height z lies under model material higher up and,
     // going up from z through air, meets a layer that walls it in within

@@ -109,6 +109,9 @@ public:
     // to test every bridge candidate.
     bool line_clear(int layer, double x0, double y0, double x1, double y1) const;
     double inflate = 0;
+    // The model's filled footprint on `layer` (holes enclosed by its
+    // material filled; a skirt loop drawn but not filled).
+    const layers::BitGrid& footprint(int layer) const { return model_[layer]; }
 
 private:
     // disc_clear's fast path for a radius asked often (a pillar's body is

@@ -272,7 +272,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
-        if (!cavities) cavities.emplace(stack, s);
+        if (!cavities) cavities.emplace(stack, obs);
         return cavities->bar_trapped(x0, y0, x1, y1, z);
     };
     std::vector<Active> start;

@@ -84,14 +84,18 @@ layers::LayerStack block_and_slab() {
 // infill lie behind its solid skin, no hollow the bar is in.
 TEST(Cavities, InfillHolesBehindASkinAreNoHollow) {
     Settings s;
-    const plan::Cavities c(block_and_slab(), s);
+    const layers::LayerStack st = block_and_slab();
+    const plan::Obstacles obs(st, s);
+    const plan::Cavities c(st, obs);
     EXPECT_FALSE(c.trapped(10, 6, 13, plan::Cavities::kReach));
     EXPECT_FALSE(c.bar_trapped(1, 6, 19, 6, 13));
 }
 
 TEST(Cavities, InsideARoofedHollowIsTrapped) {
     Settings s;
-    const plan::Cavities roofed(cabin(true), s), open(cabin(false), s);
+    const layers::LayerStack with = cabin(true), without = cabin(false);
+    const plan::Obstacles a(with, s), b(without, s);
+    const plan::Cavities roofed(with, a), open(without, b);
     EXPECT_TRUE(roofed.trapped(10, 6, 17, plan::Cavities::kReach));
     EXPECT_FALSE(open.trapped(10, 6, 17, plan::Cavities::kReach));   // a cup: lifted out
     EXPECT_FALSE(roofed.trapped(10, 0, 17, plan::Cavities::kReach)); // in the wall's plane (the window)
@@ -129,7 +133,9 @@ TEST(Cavities, NoBridgeAcrossARoofedCabin) {
 // the lip is met first going up, the way out sideways is open.
 TEST(Cavities, UnderALipBesideTheCabinIsOpen) {
     Settings s;
-    const plan::Cavities c(cabin_in_a_hull(), s);
+    const layers::LayerStack st = cabin_in_a_hull();
+    const plan::Obstacles obs(st, s);
+    const plan::Cavities c(st, obs);
     EXPECT_TRUE(c.trapped(10, 6, 17, plan::Cavities::kReach));
     EXPECT_FALSE(c.trapped(10, -2.5, 17, plan::Cavities::kReach));
     EXPECT_FALSE(c.bar_trapped(2, -2.5, 18, -2.5, 17));
