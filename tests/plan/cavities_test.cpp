@@ -78,24 +78,24 @@ layers::LayerStack block_and_slab() {
         {-5, -5, 45, 20});
 }
 
+// The cavities of a stack (they keep nothing of the obstacles they are made from).
+plan::Cavities cavities_of(const layers::LayerStack& st) {
+    const plan::Obstacles obs(st, Settings{});
+    return plan::Cavities(st, obs);
+}
+
 }  // namespace
 
 // Under an overhang, above a part's top: the holes of either part's sparse
 // infill lie behind its solid skin, no hollow the bar is in.
 TEST(Cavities, InfillHolesBehindASkinAreNoHollow) {
-    Settings s;
-    const layers::LayerStack st = block_and_slab();
-    const plan::Obstacles obs(st, s);
-    const plan::Cavities c(st, obs);
+    const plan::Cavities c = cavities_of(block_and_slab());
     EXPECT_FALSE(c.trapped(10, 6, 13, plan::Cavities::kReach));
     EXPECT_FALSE(c.bar_trapped(1, 6, 19, 6, 13));
 }
 
 TEST(Cavities, InsideARoofedHollowIsTrapped) {
-    Settings s;
-    const layers::LayerStack with = cabin(true), without = cabin(false);
-    const plan::Obstacles a(with, s), b(without, s);
-    const plan::Cavities roofed(with, a), open(without, b);
+    const plan::Cavities roofed = cavities_of(cabin(true)), open = cavities_of(cabin(false));
     EXPECT_TRUE(roofed.trapped(10, 6, 17, plan::Cavities::kReach));
     EXPECT_FALSE(open.trapped(10, 6, 17, plan::Cavities::kReach));   // a cup: lifted out
     EXPECT_FALSE(roofed.trapped(10, 0, 17, plan::Cavities::kReach)); // in the wall's plane (the window)
@@ -132,10 +132,7 @@ TEST(Cavities, NoBridgeAcrossARoofedCabin) {
 // Beside the cabin under its roof's lip, inside the hull's ring lower down:
 // the lip is met first going up, the way out sideways is open.
 TEST(Cavities, UnderALipBesideTheCabinIsOpen) {
-    Settings s;
-    const layers::LayerStack st = cabin_in_a_hull();
-    const plan::Obstacles obs(st, s);
-    const plan::Cavities c(st, obs);
+    const plan::Cavities c = cavities_of(cabin_in_a_hull());
     EXPECT_TRUE(c.trapped(10, 6, 17, plan::Cavities::kReach));
     EXPECT_FALSE(c.trapped(10, -2.5, 17, plan::Cavities::kReach));
     EXPECT_FALSE(c.bar_trapped(2, -2.5, 18, -2.5, 17));
