@@ -301,6 +301,30 @@ double estimate_print_time(const gcode::Program& p) {
     return total;
 }
 
+namespace {
+
+// Whether `out` carries scaffold's header in its first lines; if so, marks
+// the lines of its support blocks (none when it added nothing).
+bool scaffold_blocks(const gcode::Program& out, std::vector<bool>& inserted) {
+    bool header = false;
+    for (std::size_t i = 0; i < out.lines.size() && i < 20 && !header; ++i) {
+        const std::string_view t = out.line_text(i);
+        header = t.rfind("; scaffold ", 0) == 0 && t.find("(post-processed supports)") != std::string_view::npos;
+    }
+    if (!header) return false;
+    inserted.assign(out.lines.size(), false);
+    bool open = false;
+    for (std::size_t i = 0; i < out.lines.size(); ++i) {
+        const std::string_view t = out.line_text(i);
+        if (t.rfind("; scaffold: support for ", 0) == 0) open = true;
+        inserted[i] = open;
+        if (open && t.rfind("; scaffold: end", 0) == 0) open = false;
+    }
+    return true;
+}
+
+}  // namespace
+
 CheckReport check(const gcode::Program& out, const gcode::Program* original, const CheckOptions& o,
                   const std::string& svg_dir) {
     return check(out, original, build_settings(out, {}, {}), o, svg_dir);
@@ -315,6 +339,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
 
     std::vector<bool> inserted;
     std::vector<std::uint32_t> out_to_original;  // per output line: the original's line, or kNone
+    // Without the original, a file scaffold wrote still says what it added:
+    // its header, and its blocks from "; scaffold: support for ..." to
+    // "; scaffold: end". Support outside them is the slicer's own.
+    const bool scaffold_output = !original && scaffold_blocks(out, inserted);
     if (original) {
         r.compared = true;
         LineMatch match = match_lines(out, *original);
@@ -347,7 +375,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         return gcode::is_support(m.role) || (!inserted.empty() && inserted[m.line]);
     };
     auto is_slicer_support = [&](const gcode::Move& m) {
-        return original && gcode::is_support(m.role) && !inserted.empty() && !inserted[m.line];
+        return (original || scaffold_output) && gcode::is_support(m.role) && !inserted.empty() && !inserted[m.line];
     };
 
     // Extrusion sanity. The slicer's own start code (purge and prime before
@@ -373,14 +401,23 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         if (m.kind == gcode::BlockKind::ToolChange) open = m.opens;
         purge[i] = static_cast<char>(open || (m.kind == gcode::BlockKind::ToolChange && !m.opens));
     }
+    // Without the original, in scaffold's output: the slicer's own support
+    // lines are the original's (with it, `own` says so line by line).
+    std::vector<char> slicer_line;
+    if (scaffold_output) {
+        slicer_line.assign(out.lines.size(), 0);
+        for (const gcode::Move& m : out.moves)
+            if (is_slicer_support(m)) slicer_line[m.line] = 1;
+    }
     for (const Problem& q : ex.problems) {
         if (q.line < first_layer_line || purge[q.line]) {
             ++r.start_code_problems;
             if (r.start_code_notes.size() < 5) r.start_code_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
             continue;
         }
-        if (!out_to_original.empty() && out_to_original[q.line] != kNone &&
-            own.count({out_to_original[q.line], static_cast<int>(q.kind)})) {
+        if ((!out_to_original.empty() && out_to_original[q.line] != kNone &&
+             own.count({out_to_original[q.line], static_cast<int>(q.kind)})) ||
+            (!slicer_line.empty() && slicer_line[q.line])) {
             ++r.original_problems;
             if (r.original_notes.size() < 5) r.original_notes.push_back("line " + std::to_string(q.line + 1) + ": " + q.what);
             continue;

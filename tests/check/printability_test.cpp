@@ -425,4 +425,21 @@ TEST(Check, SlicersOwnSupportFaultsAreTheOriginals) {
     EXPECT_GT(compared.original_collision_mm2, 0);
     EXPECT_EQ(compared.unheld_support_mm2, 0);
     EXPECT_EQ(compared.collision_mm2, 0);
+    // Without the original, scaffold's own output says what it added (its
+    // header and blocks): the rest of the support is the slicer's.
+    const std::string header = "; scaffold 0.1.0 (post-processed supports)\n";
+    auto marked = check::check(gcode::parse(header + original, "out.gcode"), nullptr, {});
+    EXPECT_TRUE(marked.ok()) << check::report_text(marked);
+    EXPECT_GT(marked.original_unheld_support_mm2, 10);
+    // ... and what it added in mid-air still fails.
+    SynthGcode more = g;
+    more.layer(3.4);
+    more.raw("; scaffold: support for the layer at Z3.4");
+    more.type("Support material");
+    more.travel(130, 130);
+    more.extrude(136, 130);
+    more.raw("; scaffold: end");
+    auto floating = check::check(gcode::parse(header + more.str(), "out.gcode"), nullptr, {});
+    EXPECT_FALSE(floating.ok());
+    EXPECT_GT(floating.unheld_support_mm2, 2);
 }
