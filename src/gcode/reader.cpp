@@ -108,6 +108,13 @@ struct Parser {
     void comment_line(std::uint32_t i, std::string_view c) {
         if (starts_with(c, "TYPE:")) { role = role_from_name(trim(c.substr(5))); return; }
         if (starts_with(c, "FEATURE:")) { role = role_from_name(trim(c.substr(8))); return; }
+        // Simplify3D 4.1+ and Kiri:Moto: "; feature support". A name not
+        // known (Kiri's "shells") ends the one before.
+        if (starts_with(c, "feature ")) {
+            Role r = Role::Unknown;
+            role = simplify3d_role(c, r) ? r : Role::Unknown;
+            return;
+        }
         if (starts_with(c, "WIDTH:")) { width = static_cast<float>(parse_double(c.substr(6), 0)); return; }
         if (starts_with(c, "LINE_WIDTH:")) { width = static_cast<float>(parse_double(c.substr(11), 0)); return; }
         if (c == "LAYER_CHANGE" || c == "CHANGE_LAYER" || starts_with(c, "LAYER:") || starts_with(c, " LAYER:")) {

@@ -25,8 +25,8 @@ enum class Role : std::uint8_t {
 // Role named by a ;TYPE: value or a Slic3r per-line comment; Unknown if none.
 Role role_from_name(std::string_view name);
 // Simplify3D names each feature in a comment line of its own ("; outer
-// perimeter", "; support"; from 4.1 on "; feature support"); false when
-// `name` is none of them.
+// perimeter", "; support"; from 4.1 on "; feature support", as Kiri:Moto
+// does too); false when `name` is none of them.
 bool simplify3d_role(std::string_view name, Role& role);
 std::string_view role_name(Role role);
 inline bool is_support(Role r) { return r == Role::Support || r == Role::SupportInterface; }
