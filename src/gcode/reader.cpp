@@ -115,6 +115,7 @@ struct Parser {
             role = simplify3d_role(c, r) ? r : Role::Unknown;
             return;
         }
+        if (!c.empty() && c.front() == '\'' && kisslicer_role(c, role)) return;
         if (starts_with(c, "WIDTH:")) { width = static_cast<float>(parse_double(c.substr(6), 0)); return; }
         if (starts_with(c, "LINE_WIDTH:")) { width = static_cast<float>(parse_double(c.substr(11), 0)); return; }
         if (c == "LAYER_CHANGE" || c == "CHANGE_LAYER" || starts_with(c, "LAYER:") || starts_with(c, " LAYER:")) {

@@ -53,7 +53,27 @@ constexpr std::array<std::pair<std::string_view, Role>, 12> kSimplify3D{{
     {"ooze shield", Role::WipeTower},
 }};
 
+// KISSlicer's path comments ("; 'Support Interface Path', 1.9 [feed mm/s]").
+constexpr std::array<std::pair<std::string_view, Role>, 9> kKisslicer{{
+    {"Perimeter Path", Role::ExternalPerimeter}, {"Loop Path", Role::Perimeter}, {"Solid Path", Role::SolidInfill},
+    {"Sparse Infill Path", Role::InternalInfill}, {"Stacked Sparse Infill Path", Role::InternalInfill},
+    {"Support (may Stack) Path", Role::Support}, {"Support Interface Path", Role::SupportInterface},
+    {"Raft Path", Role::Support}, {"Skirt Path", Role::Skirt},
+}};
+
 }  // namespace
+
+bool kisslicer_role(std::string_view comment, Role& role) {
+    if (comment.size() < 3 || comment.front() != '\'') return false;
+    const std::size_t end = comment.find('\'', 1);
+    if (end == std::string_view::npos) return false;
+    const std::string_view name = comment.substr(1, end - 1);
+    if (name.size() < 5 || name.substr(name.size() - 5) != " Path") return false;
+    role = Role::Unknown;
+    for (const auto& [n, r] : kKisslicer)
+        if (n == name) role = r;
+    return true;
+}
 
 bool simplify3d_role(std::string_view name, Role& role) {
     while (!name.empty() && (name.back() == ' ' || name.back() == '\r')) name.remove_suffix(1);

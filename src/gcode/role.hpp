@@ -28,6 +28,10 @@ Role role_from_name(std::string_view name);
 // perimeter", "; support"; from 4.1 on "; feature support", as Kiri:Moto
 // does too); false when `name` is none of them.
 bool simplify3d_role(std::string_view name, Role& role);
+// KISSlicer names each path in a comment ("'Support Interface Path', ...");
+// false when `comment` is no such name, else the role (Unknown for the
+// paths it has no role for: travel, destring, ...).
+bool kisslicer_role(std::string_view comment, Role& role);
 std::string_view role_name(Role role);
 inline bool is_support(Role r) { return r == Role::Support || r == Role::SupportInterface; }
 // Slicer-marked bridges: printed over air on purpose, held at both ends.

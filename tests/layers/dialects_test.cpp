@@ -389,3 +389,19 @@ TEST(Dialects, KiriMotoFeatureComments) {
     EXPECT_EQ(roles, (std::vector<gcode::Role>{gcode::Role::Unknown, gcode::Role::Support, gcode::Role::Unknown}));
 }
 
+// KISSlicer names each path in a comment: its support and raft are support.
+TEST(Dialects, KisslicerPathComments) {
+    std::string s = "; KISSlicer - FREE version 2 a 2.0.6 Win64\nM83\n; BEGIN_LAYER_OBJECT z=0.263 z_thickness=0.263\nG1 Z0.263\nG1 X10 Y10\n";
+    for (const char* f : {"'Perimeter Path', 20.0 [feed mm/s], 30.0 [head mm/s]", "'Support (may Stack) Path'",
+                          "'Destring/Wipe/Jump Path', 1.0 [feed mm/s]", "'Support Interface Path', 1.9 [feed mm/s]"}) {
+        s += std::string("; ") + f + "\n";
+        s += "G1 X20 Y10 E0.3\nG1 X10 Y10\n";
+    }
+    Parsed p = parse(s);
+    std::vector<gcode::Role> roles;
+    for (const auto& m : p.program.moves)
+        if (m.kind == gcode::MoveKind::Extrude) roles.push_back(m.role);
+    EXPECT_EQ(roles, (std::vector<gcode::Role>{gcode::Role::ExternalPerimeter, gcode::Role::Support, gcode::Role::Unknown,
+                                               gcode::Role::SupportInterface}));
+}
+
