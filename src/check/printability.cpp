@@ -177,8 +177,19 @@ struct Extrusion {
 
 // Extrusion sanity and filament, per move: implied widths, E pushed without
 // motion to lay it down, extrusion off the bed.
+// Each extruding move's layer height: the slicer's stated one, else its
+// layer's z less the z of the layer beneath; 0 where the move is in no layer.
+std::vector<float> move_heights(const gcode::Program& p, const layers::LayerStack& stack) {
+    std::vector<float> h(p.moves.size(), 0.0f);
+    for (const layers::Layer& l : stack.layers)
+        for (const layers::Segment& sg : l.segments)
+            h[sg.move] = static_cast<float>(l.nominal_height > 0 ? l.nominal_height : l.height);
+    return h;
+}
+
 template <class IsSupport>
-Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, IsSupport is_support) {
+Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, const std::vector<float>& heights,
+                             IsSupport is_support) {
     const double fd = settings.filament_diameter, nozzle = settings.nozzle_diameter;
     Extrusion x;
     auto note = [&](std::uint32_t line, ProblemKind kind, std::string what) { x.problems.push_back({line, kind, std::move(what)}); };
@@ -204,7 +215,10 @@ Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, 
         }
         if (m.kind != gcode::MoveKind::Extrude) continue;
         double len = std::hypot(m.x1 - m.x0, m.y1 - m.y0);
-        double h = m.z1 <= settings.first_layer_height + kZEps ? settings.first_layer_height : settings.layer_height;
+        // The layer's own height (a raft's thick base, variable layers),
+        // else the settings'.
+        const float own = heights[static_cast<std::size_t>(&m - p.moves.data())];
+        double h = own > 0 ? own : m.z1 <= settings.first_layer_height + kZEps ? settings.first_layer_height : settings.layer_height;
         // What a bead of the widest sane width would take over this length;
         // the first extrusion after a retraction also primes.
         double e_max = len * ((max_width - h) * h + std::numbers::pi * h * h / 4) / (std::numbers::pi * fd * fd / 4);
@@ -382,7 +396,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     // the first layer) and, with --original, what the original already did
     // are reported apart: only what the edit added or broke fails.
     const std::uint32_t first_layer_line = first_layer_start(stack);
-    const Extrusion ex = extrusion_problems(out, settings, is_support_move);
+    const Extrusion ex = extrusion_problems(out, settings, move_heights(out, stack), is_support_move);
     r.support_filament_mm = ex.support_mm;
     r.model_filament_mm = ex.model_mm;
     // (original line, kind) the original had itself; its start code needs no
@@ -390,7 +404,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     std::set<std::pair<std::uint32_t, int>> own;
     if (original)
         for (const Problem& q :
-             extrusion_problems(*original, settings, [](const gcode::Move& m) { return gcode::is_support(m.role); }).problems)
+             extrusion_problems(*original, settings, move_heights(*original, layers::build_layers(*original, settings)),
+                                [](const gcode::Move& m) { return gcode::is_support(m.role); })
+                 .problems)
             own.insert({q.line, static_cast<int>(q.kind)});
     // A tool change's purge (Bambu's M620..M621 flush, PrusaSlicer's wipe
     // tower change) is the slicer's own, like the start code's.

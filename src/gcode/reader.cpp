@@ -98,6 +98,7 @@ struct Parser {
     std::string cura_settings;
     bool simplify3d = false;
     bool saw_e_mode = false;  // M82 or M83 seen
+    std::uint32_t last_extrusion_line = 0;
     // XY moves with an E word, and those of them that did not move E
     // forward: a file that never says M82 or M83 may still be written with
     // relative E (the firmware's default); read as absolute, its E then
@@ -120,6 +121,14 @@ struct Parser {
         if (starts_with(c, "LINE_WIDTH:")) { width = static_cast<float>(parse_double(c.substr(11), 0)); return; }
         if (c == "LAYER_CHANGE" || c == "CHANGE_LAYER" || starts_with(c, "LAYER:") || starts_with(c, " LAYER:")) {
             p.layer_hints.push_back({i, -1, -1});
+            return;
+        }
+        // Prusa profiles' before-layer G-code: a layer change in files that
+        // write no ;LAYER_CHANGE (PrusaSlicer before 2.2); after one, with
+        // no extrusion since, it is the same change.
+        if (c == "BEFORE_LAYER_CHANGE") {
+            if (p.layer_hints.empty() || p.layer_hints.back().line < last_extrusion_line)
+                p.layer_hints.push_back({i, -1, -1});
             return;
         }
         // Simplify3D "; layer 2, Z = 0.69", Kiri:Moto ";; --- layer 1 (0.250 @ 0.505) ---",
@@ -198,6 +207,7 @@ struct Parser {
         for (std::size_t k = before; k < p.moves.size(); ++k) {
             p.moves[k].role = r;
             p.moves[k].width = width;
+            if (p.moves[k].kind == MoveKind::Extrude) last_extrusion_line = i;
         }
     }
 };

@@ -176,6 +176,11 @@ LayerStack build_layers(const gcode::Program& program, const Settings& settings)
         if (!extrudes(m)) continue;
         double z = m.z1;
         bool starts = !any || std::abs(z - stack.layers.back().z) > kZEps;
+        // Extrusions before the slicer's first layer comment are start code
+        // (an intro line at the first layer's own height): a layer apart.
+        if (any && hint == 0 && !program.layer_hints.empty() && program.layer_hints[0].line <= m.line &&
+            program.layer_hints[0].line > prev_last_extrusion)
+            starts = true;
         if (stack.z_varies && any) {
             starts = hint < program.layer_hints.size() && program.layer_hints[hint].line <= m.line &&
                      program.layer_hints[hint].line > prev_last_extrusion;
