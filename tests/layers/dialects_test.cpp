@@ -354,6 +354,18 @@ TEST(Dialects, SequentialPrintingRecognisedByZ) {
     EXPECT_FALSE(layers::z_motion(parse(together.str()).program).restarts);
 }
 
+namespace {
+
+// The role of each extruding move, in order.
+std::vector<gcode::Role> extrusion_roles(const Parsed& p) {
+    std::vector<gcode::Role> roles;
+    for (const auto& m : p.program.moves)
+        if (m.kind == gcode::MoveKind::Extrude) roles.push_back(m.role);
+    return roles;
+}
+
+}  // namespace
+
 // Simplify3D names each feature in a comment line of its own, from 4.1 on
 // after the word "feature".
 TEST(Dialects, Simplify3DFeatureComments) {
@@ -366,11 +378,7 @@ TEST(Dialects, Simplify3DFeatureComments) {
         e += 0.3;
         s += "G1 X" + std::to_string(20 + 10 * k) + " Y10 E" + std::to_string(e) + "\n";
     }
-    Parsed p = parse(s);
-    std::vector<gcode::Role> roles;
-    for (const auto& m : p.program.moves)
-        if (m.kind == gcode::MoveKind::Extrude) roles.push_back(m.role);
-    EXPECT_EQ(roles, (std::vector<gcode::Role>{gcode::Role::ExternalPerimeter, gcode::Role::Support, gcode::Role::BridgeInfill,
+    EXPECT_EQ(extrusion_roles(parse(s)), (std::vector<gcode::Role>{gcode::Role::ExternalPerimeter, gcode::Role::Support, gcode::Role::BridgeInfill,
                                                gcode::Role::SupportInterface, gcode::Role::SolidInfill}));
 }
 
@@ -382,11 +390,7 @@ TEST(Dialects, KiriMotoFeatureComments) {
         s += std::string("; feature ") + f + "\n";
         s += "G1 X20 Y10 E0.3\nG1 X10 Y10\n";
     }
-    Parsed p = parse(s);
-    std::vector<gcode::Role> roles;
-    for (const auto& m : p.program.moves)
-        if (m.kind == gcode::MoveKind::Extrude) roles.push_back(m.role);
-    EXPECT_EQ(roles, (std::vector<gcode::Role>{gcode::Role::Unknown, gcode::Role::Support, gcode::Role::Unknown}));
+    EXPECT_EQ(extrusion_roles(parse(s)), (std::vector<gcode::Role>{gcode::Role::Unknown, gcode::Role::Support, gcode::Role::Unknown}));
 }
 
 // KISSlicer names each path in a comment: its support and raft are support.
@@ -397,11 +401,7 @@ TEST(Dialects, KisslicerPathComments) {
         s += std::string("; ") + f + "\n";
         s += "G1 X20 Y10 E0.3\nG1 X10 Y10\n";
     }
-    Parsed p = parse(s);
-    std::vector<gcode::Role> roles;
-    for (const auto& m : p.program.moves)
-        if (m.kind == gcode::MoveKind::Extrude) roles.push_back(m.role);
-    EXPECT_EQ(roles, (std::vector<gcode::Role>{gcode::Role::ExternalPerimeter, gcode::Role::Support, gcode::Role::Unknown,
+    EXPECT_EQ(extrusion_roles(parse(s)), (std::vector<gcode::Role>{gcode::Role::ExternalPerimeter, gcode::Role::Support, gcode::Role::Unknown,
                                                gcode::Role::SupportInterface}));
 }
 
