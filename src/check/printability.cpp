@@ -175,8 +175,6 @@ struct Extrusion {
     double support_mm = 0, model_mm = 0;
 };
 
-// Extrusion sanity and filament, per move: implied widths, E pushed without
-// motion to lay it down, extrusion off the bed.
 // Each extruding move's layer height: the slicer's stated one, else its
 // layer's z less the z of the layer beneath; 0 where the move is in no layer.
 std::vector<float> move_heights(const gcode::Program& p, const layers::LayerStack& stack) {
@@ -187,6 +185,8 @@ std::vector<float> move_heights(const gcode::Program& p, const layers::LayerStac
     return h;
 }
 
+// Extrusion sanity and filament, per move: implied widths, E pushed without
+// motion to lay it down, extrusion off the bed.
 template <class IsSupport>
 Extrusion extrusion_problems(const gcode::Program& p, const Settings& settings, const std::vector<float>& heights,
                              IsSupport is_support) {
@@ -388,8 +388,10 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     auto is_support_move = [&](const gcode::Move& m) {
         return gcode::is_support(m.role) || (!inserted.empty() && inserted[m.line]);
     };
+    // What the edit added is known (`inserted`, from the original or from
+    // scaffold's blocks): support on the other lines is the slicer's own.
     auto is_slicer_support = [&](const gcode::Move& m) {
-        return (original || scaffold_output) && gcode::is_support(m.role) && !inserted.empty() && !inserted[m.line];
+        return !inserted.empty() && gcode::is_support(m.role) && !inserted[m.line];
     };
 
     // Extrusion sanity. The slicer's own start code (purge and prime before
@@ -590,13 +592,13 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         // directly under model material of this layer (within one cell). A
         // tip that touches the model only higher up holds nothing here.
         tips &= here.model.dilated(o.resolution);
-        // Rule (a)'s reach from the beads themselves (layers::draw_reach).
+        // Rule (a)'s reach, from the beads themselves.
         const double reach = layer.height * slope + o.resolution / 2;
         layers::BitGrid held_grid = proto;
         for (const auto& [k, model_too] : beneath)
-            for (const auto& sg : stack.layers[k].segments)
-                if (model_too || is_support_move(out.moves[sg.move]))
-                    held_grid.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 2 * reach);
+            layers::draw_reach(held_grid, stack.layers[k], reach, [&, model_too = model_too](const layers::Segment& sg) {
+                return model_too || is_support_move(out.moves[sg.move]);
+            });
 
         // (a) per centre-line sample, then holes enclosed by the layer beneath.
         const auto& segs = layer.segments;
@@ -692,7 +694,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         }
         // What is left is unheld: draw those stretches of bead.
         layers::BitGrid unheld_model = proto, unheld_support = proto, unheld_slicer = proto;
-        bool any_left = false;
+        bool any_left = false, any_slicer = false;
         for (const auto& piece : pieces)
             for (std::size_t k = 0; k < piece.size(); ++k) {
                 if (piece[k].held) continue;
@@ -701,13 +703,14 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 const gcode::Move& m = out.moves[sg.move];
                 const bool slicer = is_slicer_support(m);
                 any_left |= !slicer;
+                any_slicer |= slicer;
                 // Through the unheld samples only, as the detector draws them
                 // (so a region it finds under the speck size is never larger here).
                 const auto& prev = k > 0 && !piece[k - 1].held ? piece[k - 1] : sm;
                 (slicer ? unheld_slicer : is_support_move(m) ? unheld_support : unheld_model)
                     .draw_segment(prev.x, prev.y, sm.x, sm.y, sg.width);
             }
-        r.original_unheld_support_mm2 += static_cast<double>(unheld_slicer.count()) * proto.cell_area();
+        if (any_slicer) r.original_unheld_support_mm2 += static_cast<double>(unheld_slicer.count()) * proto.cell_area();
         if (!any_left) continue;
         double am = static_cast<double>(unheld_model.count()) * proto.cell_area();
         double as = static_cast<double>(unheld_support.count()) * proto.cell_area();

@@ -636,15 +636,4 @@ CellBox layer_box(const BitGrid& grid, const Layer& layer) {
     return grid.clipped(b);
 }
 
-CellBox draw_reach(BitGrid& grid, const Layer& layer, double reach, bool support_only) {
-    bool any = false;
-    for (const Segment& s : layer.segments)
-        if (!support_only || gcode::is_support(s.role)) {
-            grid.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width + 2 * reach);
-            any = true;
-        }
-    if (!any) return {};
-    return grid.clipped(layer_box(grid, layer).grown(static_cast<int>(std::ceil(reach / grid.cell())) + 1));
-}
-
 }  // namespace scaffold::layers

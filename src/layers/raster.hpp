@@ -152,10 +152,20 @@ void draw_layer(BitGrid& grid, const Layer& layer);
 // width) can set, clipped to the grid.
 CellBox layer_box(const BitGrid& grid, const Layer& layer);
 // What METHOD's rule (a) holds above the layer: every cell whose centre
-// lies within `reach` of one of its beads (of its support only, if asked),
+// lies within `reach` of one of its beads that `keep(segment)` accepts,
 // measured from the bead itself rather than from the cells it covers, which
 // fall up to a cell short of its edge. Returns the box that can have changed.
-CellBox draw_reach(BitGrid& grid, const Layer& layer, double reach, bool support_only = false);
+template <class Keep>
+CellBox draw_reach(BitGrid& grid, const Layer& layer, double reach, Keep keep) {
+    bool any = false;
+    for (const Segment& s : layer.segments)
+        if (keep(s)) {
+            grid.draw_segment(s.x0, s.y0, s.x1, s.y1, s.width + 2 * reach);
+            any = true;
+        }
+    if (!any) return {};
+    return grid.clipped(layer_box(grid, layer).grown(static_cast<int>(std::ceil(reach / grid.cell())) + 1));
+}
 
 // The set cells as SVG: one <rect> per horizontal run, in cell units with
 // y pointing up (row 0 at the bottom), inside a <g fill="...">.

@@ -250,6 +250,8 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
     return drew;
 }
 
+bool is_support_segment(const layers::Segment& sg) { return gcode::is_support(sg.role); }
+
 // The layers below layer n holding the slicer's own support within reach
 // of it: three nominal layers, or the layer's own stated height (the
 // validator's window for support beneath).
@@ -312,13 +314,14 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
                     for (const layers::Segment& sg : stack.layers[k].segments)
                         if (sg.role != gcode::Role::Skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
             }
-            for (int k : contact)
+            for (int k : contact) {
+                below_box = layers::united(below_box, layers::layer_box(below, stack.layers[k]));
                 for (const layers::Segment& sg : stack.layers[k].segments)
-                    if (gcode::is_support(sg.role)) {
+                    if (is_support_segment(sg)) {
                         below.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
                         if (below_has_skirt) rim.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
                     }
-            if (!contact.empty()) below_box = layers::CellBox{0, 0, below.width() - 1, below.height() - 1};
+            }
             below_layers = layer.beneath;
             contact_layers = contact;
         }
@@ -328,8 +331,10 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         held.clear(held_box);
         held_box = {};
         const double reach = layer.height * slope + s.resolution / 2;
-        for (int k : layer.beneath) held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach));
-        for (int k : contact) held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach, true));
+        for (int k : layer.beneath)
+            held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach, [](const layers::Segment&) { return true; }));
+        for (int k : contact)
+            held_box = layers::united(held_box, layers::draw_reach(held, stack.layers[k], reach, is_support_segment));
         if (over_drawn) over.clear(over_box);
         over_box = layers::layer_box(over, layer);
         over_index = n;
@@ -376,7 +381,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             model.clear();
             for (int k : contact)
                 for (const layers::Segment& sg : stack.layers[k].segments)
-                    if (gcode::is_support(sg.role)) tips.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                    if (is_support_segment(sg)) tips.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
             for (const layers::Segment& sg : segs)
                 if (!gcode::is_support(sg.role) && sg.role != gcode::Role::Skirt)
                     model.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
