@@ -12,6 +12,7 @@
 #include "gcode/blocks.hpp"
 #include "gcode/error.hpp"
 #include "gcode/lexer.hpp"
+#include "layers/crossing.hpp"
 #include "layers/layer_stack.hpp"
 #include "layers/raster.hpp"
 #include "layers/regions.hpp"
@@ -615,7 +616,11 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
             const auto& sg = segs[k];
             double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
             bool joins = false;
-            const double limit = is_support_move(out.moves[sg.move]) || gcode::is_bridge(sg.role) ? o.bridge_limit : max_bridge;
+            // Scaffold's bars and the slicer's bridge infill may span the
+            // bridge limit; any other bead (an overhang perimeter too: it is
+            // a wall) the shorter one.
+            const double limit =
+                is_support_move(out.moves[sg.move]) || sg.role == gcode::Role::BridgeInfill ? o.bridge_limit : max_bridge;
             if (k > 0 && !pieces.empty() && len > 0) {
                 const auto& pv = segs[k - 1];
                 bool same_path = sg.move == pv.move + 1 && limit == piece_limit.back();
@@ -651,7 +656,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 if (!sm.held && enclosed.get(enclosed.col(sm.x), enclosed.row(sm.y))) sm.held = true;
 
         // (b) unheld runs of a straight piece, held at both ends within the
-        // bridge limit, or a short dangling end. Where a path turns, the
+        // bridge limit and leaving both across the edge of the footprint
+        // beneath (layers::run_crosses), or a short dangling end. Where a path turns, the
         // corner is held when the piece on either side is held within a
         // dangling end of it: that stretch is held by (b) itself.
         std::vector<std::pair<char, char>> joint_held(pieces.size(), {0, 0});
@@ -675,7 +681,8 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 double s_a = start_held ? piece[i - 1].s : piece[i].s;
                 double s_b = end_held ? piece[j].s : piece[j - 1].s;
                 double span = s_b - s_a;
-                bool ok = (start_held && end_held && span <= piece_limit[q]) ||
+                bool ok = (start_held && end_held && span <= piece_limit[q] &&
+                           layers::run_crosses(below, piece, i - 1, j)) ||
                           ((start_held != end_held) && span <= o.dangling_end);
                 if (ok)
                     for (std::size_t k = i; k < j; ++k) piece[k].held = true;

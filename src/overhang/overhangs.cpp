@@ -1,5 +1,6 @@
 #include "overhang/overhangs.hpp"
 
+#include "layers/crossing.hpp"
 #include "layers/regions.hpp"
 
 #include <algorithm>
@@ -222,14 +223,15 @@ bool held_near_end(const std::vector<layers::Segment>& segs, std::size_t first, 
 }
 
 // Segments [first, last] (one straight piece of one path): an unheld run of
-// the centre line held on both sides and no longer than `max_span` is
+// the centre line held on both sides, no longer than `max_span` and leaving
+// both held ends across the edge of `footprint` (the material beneath) is
 // spanned, as is a dangling end of at most 1 mm; other unheld runs overhang.
 // A corner where the path turns counts as held when the piece beyond it is
 // held within a dangling end (first_held / last_held). Called for pieces
 // not held throughout. Returns whether it drew.
 bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
-                    const layers::BitGrid& held, double step, double max_span, bool first_held, bool last_held,
-                    layers::BitGrid& over, std::vector<Sample>& p) {
+                    const layers::BitGrid& held, const layers::BitGrid& footprint, double step, double max_span,
+                    bool first_held, bool last_held, layers::BitGrid& over, std::vector<Sample>& p) {
     piece_samples(segs, first, last, held, step, p);
     if (first_held) p.front().held = true;
     if (last_held) p.back().held = true;
@@ -239,7 +241,7 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
         std::size_t j = i;
         while (j < p.size() && !p[j].held) ++j;
         bool start_held = i > 0, end_held = j < p.size();
-        bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span;
+        bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span && layers::run_crosses(footprint, p, i - 1, j);
         bool short_end = start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
         if (!spanned && !short_end) {
             draw_samples(p, i, j - 1, over);
@@ -251,6 +253,10 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
 }
 
 bool is_support_segment(const layers::Segment& sg) { return gcode::is_support(sg.role); }
+
+// Bridge infill may span the marked-bridge limit; an overhang perimeter is
+// a wall, held across a gap like any other bead (METHOD's rule (b)).
+bool is_bridge_infill(const layers::Segment& sg) { return sg.role == gcode::Role::BridgeInfill; }
 
 // The layers below layer n holding the slicer's own support within reach
 // of it: three nominal layers, or the layer's own stated height (the
@@ -347,9 +353,9 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         // and overhang perimeters into many moves.
         pieces.clear();
         for (std::size_t k = 0; k < segs.size(); ++k) {
-            const bool bridge = gcode::is_bridge(segs[k].role);
+            const bool bridge = is_bridge_infill(segs[k]);
             std::size_t last = k;
-            while (last + 1 < segs.size() && gcode::is_bridge(segs[last + 1].role) == bridge &&
+            while (last + 1 < segs.size() && is_bridge_infill(segs[last + 1]) == bridge &&
                    continues_straight(segs[k], segs[last], segs[last + 1]))
                 ++last;
             pieces.push_back({k, last});
@@ -359,7 +365,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             const auto [k, last] = pieces[q];
             // The slicer's own support is the slicer's: scaffold holds the model.
             if (gcode::is_support(segs[k].role)) continue;
-            const bool bridge = gcode::is_bridge(segs[k].role);
+            const bool bridge = is_bridge_infill(segs[k]);
             // Corners: the path goes on from the piece before / into the next.
             // Most pieces are held throughout: nothing to draw, no corner to
             // look at.
@@ -370,8 +376,9 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
                 from_prev && held_near_end(segs, pieces[q - 1].first, pieces[q - 1].second, held, s.resolution, true, samples);
             const bool last_held = into_next && held_near_end(segs, pieces[q + 1].first, pieces[q + 1].second, held,
                                                               s.resolution, false, samples);
-            over_drawn |= straight_piece(segs, k, last, held, s.resolution, bridge ? s.marked_bridge_limit : s.max_bridge,
-                                         first_held, last_held, over, samples);
+            over_drawn |= straight_piece(segs, k, last, held, below_has_skirt ? rim : below, s.resolution,
+                                         bridge ? s.marked_bridge_limit : s.max_bridge, first_held, last_held, over,
+                                         samples);
         }
         if (over_drawn && !contact.empty()) {
             // Rule (c) for the slicer's contact tips, after (a) and (b) as

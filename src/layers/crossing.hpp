@@ -1,0 +1,57 @@
+#pragma once
+// METHOD's rule (b), the part the detector and the validator share: a bead
+// is held across a gap only where it *crosses* it. Each held end must be
+// left across the edge of the footprint beneath, not along it: within 1 mm
+// of the held end (or half the run, if shorter) the bead's distance from
+// that footprint grows by at least half the length walked (it crosses the
+// edge at 30 degrees or more). A wall running along the edge outside its
+// reach -- the outer wall of a steep overhang -- crosses no gap.
+#include <algorithm>
+#include <vector>
+
+#include "layers/raster.hpp"
+
+namespace scaffold::layers {
+
+// How far a held end's test walks into the run (METHOD.md).
+inline constexpr double kCrossingWalk = 1.0;
+
+// Distance in mm from (x, y) to the nearest set cell of `footprint` (to the
+// cell's square, so 0 inside one), or `limit` when none is nearer.
+double footprint_distance(const BitGrid& footprint, double x, double y, double limit);
+
+// The walk for an unheld run `span` mm long between its held ends.
+inline double crossing_walk(double span) { return span / 2 < kCrossingWalk ? span / 2 : kCrossingWalk; }
+
+// Whether the bead leaves the held end (hx, hy) across the footprint's edge:
+// at (px, py), `walked` mm along the run from it, its distance from the
+// footprint has grown by at least walked / 2.
+bool leaves_across(const BitGrid& footprint, double hx, double hy, double px, double py, double walked);
+
+// Samples of a straight piece's centre line in order, each with x, y and its
+// arc length s: the point `s` along it, between the samples around it.
+template <class Sample>
+void point_at(const std::vector<Sample>& p, double s, double& x, double& y) {
+    std::size_t k = 1;
+    while (k + 1 < p.size() && p[k].s < s) ++k;
+    const Sample& a = p[k - 1];
+    const Sample& b = p[k];
+    const double t = b.s > a.s ? std::clamp((s - a.s) / (b.s - a.s), 0.0, 1.0) : 0.0;
+    x = a.x + (b.x - a.x) * t;
+    y = a.y + (b.y - a.y) * t;
+}
+
+// Whether the unheld run between held samples `a` and `b` (a < b) of a
+// straight piece crosses the gap: it leaves both held ends across the
+// footprint's edge (METHOD's rule (b)). The span limit is the caller's.
+template <class Sample>
+bool run_crosses(const BitGrid& footprint, const std::vector<Sample>& p, std::size_t a, std::size_t b) {
+    const double walk = crossing_walk(p[b].s - p[a].s);
+    double x, y;
+    point_at(p, p[a].s + walk, x, y);
+    if (!leaves_across(footprint, p[a].x, p[a].y, x, y, walk)) return false;
+    point_at(p, p[b].s - walk, x, y);
+    return leaves_across(footprint, p[b].x, p[b].y, x, y, walk);
+}
+
+}  // namespace scaffold::layers
