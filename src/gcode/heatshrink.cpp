@@ -114,10 +114,14 @@ std::string decompress(std::string_view in, Params p, std::size_t max_out) {
         if (!br.has(copy_bits - 1)) break;
         std::size_t dist = br.get(p.window_bits) + 1;
         std::size_t len = br.get(p.lookahead_bits) + 1;
-        if (dist > out.size()) throw Error("heatshrink copy reaches before the start of the data");
         if (out.size() + len > max_out) throw Error("heatshrink data decodes to more bytes than the block header says");
-        std::size_t from = out.size() - dist;
-        for (std::size_t k = 0; k < len; ++k) out.push_back(out[from + k]);
+        // The window starts out as zero bytes, in the reference encoder as in
+        // its decoder: a copy from before the start is zeros (MeatPack's
+        // "00" pair is a zero byte, so the encoder does match there).
+        for (std::size_t k = 0; k < len; ++k) {
+            const std::size_t at = out.size();
+            out.push_back(at >= dist ? out[at - dist] : '\0');
+        }
     }
     return out;
 }
