@@ -20,6 +20,7 @@
 #include "plan/planner.hpp"
 #include "splice/splice.hpp"
 #include "toolpath/preview.hpp"
+#include "toolpath/bar_check.hpp"
 #include "toolpath/support_paths.hpp"
 
 namespace scaffold::cli {
@@ -28,6 +29,8 @@ namespace {
 
 // Rounds of points for what tips set off their points leave unheld.
 constexpr int kCoverRounds = 3;
+// Plans made again without the bars the one before could not hold as built.
+constexpr int kBarRounds = 4;
 
 using Clock = std::chrono::steady_clock;
 
@@ -179,16 +182,30 @@ void run(const Request& req, spdlog::logger& log) {
                  "same mesh, as the model's own moves give it");
 
     auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
-    plan::Scaffold scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
-                                                                 : plan::plan_scaffold(points, stack, *obstacles, settings);
-    // A tip set off its point (a slot, a wall) holds less of the sheet than
-    // the point stood for (METHOD's rule (c)): what it leaves gets points and
-    // pillars of its own, a few rounds at most.
-    if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, *obstacles, settings,
-                                           settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
-        log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
+    const overhang::SupportPoints detected = points;
+    plan::Scaffold scaffold;
+    toolpath::SupportPaths paths;
+    std::vector<plan::Bridge> forbidden;
+    for (int round = 0;; ++round) {
+        points = detected;
+        scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
+                                                      : plan::plan_scaffold(points, stack, *obstacles, settings, forbidden);
+        // A tip set off its point (a slot, a wall) holds less of the sheet than
+        // the point stood for (METHOD's rule (c)): what it leaves gets points and
+        // pillars of its own, a few rounds at most.
+        if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, *obstacles, settings,
+                                               settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
+            log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
+        paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
+        // A bar whose line rule (b) does not hold as built (it passes along
+        // the edge of a column it does not rest on): plan again without it.
+        if (round == kBarRounds) break;
+        const std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (bad.empty()) break;
+        for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
+        log.debug("{} bars not held as built: planning again without them", bad.size());
+    }
     time.lap("plan");
-    const toolpath::SupportPaths paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
     obstacles.reset();  // one raster per layer: free before the text is read again
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())

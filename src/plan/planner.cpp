@@ -255,7 +255,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
 }
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
-                       const Settings& s) {
+                       const Settings& s, const std::vector<Bridge>& forbidden) {
     // Layers by z without purge lines: the layer above a height.
     LayerIndex by_z;
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
@@ -271,7 +271,18 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // Bars that would be trapped in a hollow of the model are no bridges:
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
+    // Bars whose lines a plan before this one failed to hold (toolpath::
+    // unheld_bars) are not taken again.
+    auto is_forbidden = [&](double z, double x0, double y0, double x1, double y1) {
+        auto same = [](double a, double b) { return std::abs(a - b) < 1e-9; };
+        for (const Bridge& f : forbidden)
+            if (same(f.z, z) && ((same(f.x0, x0) && same(f.y0, y0) && same(f.x1, x1) && same(f.y1, y1)) ||
+                                 (same(f.x0, x1) && same(f.y0, y1) && same(f.x1, x0) && same(f.y1, y0))))
+                return true;
+        return false;
+    };
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
+        if (is_forbidden(z, x0, y0, x1, y1)) return true;
         if (!cavities) cavities.emplace(stack, obs);
         return cavities->bar_trapped(x0, y0, x1, y1, z);
     };

@@ -39,6 +39,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
 // bridge ends) is dropped by drop_pillar, which steps around the model, and
 // a bridge is placed only where both its ends get one.
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
-                       const Obstacles& obstacles, const Settings& settings);
+                       const Obstacles& obstacles, const Settings& settings,
+                       const std::vector<Bridge>& forbidden = {});
 
 }  // namespace scaffold::plan

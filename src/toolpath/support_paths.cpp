@@ -168,6 +168,59 @@ void order_paths(std::vector<Path>& paths) {
     paths = std::move(out);
 }
 
+// A bar passing beside a column it does not rest on, its line within the
+// reach of the column's loop beneath but along the loop's edge, is held
+// there by a sliver it only grazes: METHOD's rule (b) then judges each part
+// of the bar from a held end left along the edge, not across it. A spur on
+// the layer under the bar, straight out from the loop and under both bar
+// lines, gives the bar a held stretch it crosses at right angles instead.
+// The spur itself is a dangling end of the loop (under 1 mm past its reach).
+void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridges, double z,
+               const layers::Layer& bar_layer, const Settings& s) {
+    const double w = s.support_width;
+    const double reach = bar_layer.height * std::tan(s.overhang_angle_deg * std::numbers::pi / 180) + s.resolution / 2;
+    const std::size_t n_loops = paths.size();
+    for (const plan::Bridge& br : bridges) {
+        // This layer is the one right under the bar's first layer.
+        if (!(z <= br.z + kZEps && bar_layer.z > br.z + kZEps)) continue;
+        const double dx = br.x1 - br.x0, dy = br.y1 - br.y0, len = std::hypot(dx, dy);
+        if (len < 1e-6) continue;
+        const double ux = dx / len, uy = dy / len, ext = s.pillar_radius * 0.5;
+        for (std::size_t i = 0; i < n_loops; ++i) {
+            const Path& p = paths[i];
+            if (p.kind == PathKind::Bridge || p.kind == PathKind::Raft || p.points.size() < 4) continue;
+            const Point& f = p.points.front();
+            const Point& b = p.points.back();
+            if (std::hypot(f.x - b.x, f.y - b.y) > 1e-6) continue;  // not a loop
+            double cx = 0, cy = 0;
+            for (std::size_t k = 0; k + 1 < p.points.size(); ++k) cx += p.points[k].x, cy += p.points[k].y;
+            cx /= static_cast<double>(p.points.size() - 1);
+            cy /= static_cast<double>(p.points.size() - 1);
+            double rc = 0;
+            for (const Point& q : p.points) rc = std::max(rc, std::hypot(q.x - cx, q.y - cy));
+            const double outer = rc + p.width / 2;
+            // Where the loop's centre falls along the bar, and how far aside.
+            const double t = (cx - br.x0) * ux + (cy - br.y0) * uy;
+            if (t < -ext || t > len + ext) continue;
+            const double e = (cx - br.x0) * -uy + (cy - br.y0) * ux;  // signed, left of the bar positive
+            const double near = std::abs(e) - w / 2, far = std::abs(e) + w / 2;
+            auto grazes = [&](double d) { return d > outer * 0.85 && d < outer + reach + 0.15; };
+            if (!grazes(near) && !grazes(far)) continue;
+            // From the loop's centre line toward the bar, past its far line.
+            const double sign = e > 0 ? -1.0 : 1.0;
+            const double nx = sign * -uy, ny = sign * ux;
+            const double from = rc, to = far + 0.3;
+            if (to - from > 1.4 || to <= from) continue;
+            Path spur;
+            spur.kind = PathKind::Pillar;
+            spur.width = w;
+            spur.speed_mm_s = p.speed_mm_s;
+            spur.points = {{cx + nx * from, cy + ny * from}, {cx + nx * to, cy + ny * to}};
+            paths.push_back(std::move(spur));
+        }
+    }
+}
+
 }  // namespace
 
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s,
@@ -256,22 +309,17 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
-            double dx = br.x1 - br.x0, dy = br.y1 - br.y0, len = std::hypot(dx, dy);
-            if (len < 1e-6) continue;
-            double nx = -dy / len * w / 2, ny = dx / len * w / 2;
-            // Reach into the pillar tops at both ends so the bar is anchored.
-            double ex = dx / len * s.pillar_radius * 0.5, ey = dy / len * s.pillar_radius * 0.5;
-            for (int side : {-1, 1}) {
+            for (std::vector<Point>& line : bar_lines(br, w, s.pillar_radius)) {
                 Path p;
                 p.kind = PathKind::Bridge;
                 p.bridge = true;
                 p.width = w;
                 p.speed_mm_s = s.bridge_speed_mm_s;
-                Point a{br.x0 - ex + side * nx, br.y0 - ey + side * ny}, b{br.x1 + ex + side * nx, br.y1 + ey + side * ny};
-                p.points = side < 0 ? std::vector<Point>{a, b} : std::vector<Point>{b, a};
+                p.points = std::move(line);
                 lp.paths.push_back(std::move(p));
             }
         }
+        if (next[l] >= 0) add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s);
         if (lp.paths.empty()) continue;
         order_paths(lp.paths);
         if (obstacles)
@@ -280,6 +328,20 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 lp.paths[i].retract = !obstacles->segment_clear(l, a.x, a.y, b.x, b.y, s.support_width);
             }
         out.layers.push_back(std::move(lp));
+    }
+    return out;
+}
+
+std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, double pillar_radius) {
+    const double dx = br.x1 - br.x0, dy = br.y1 - br.y0, len = std::hypot(dx, dy);
+    if (len < 1e-6) return {};
+    const double nx = -dy / len * width / 2, ny = dx / len * width / 2;
+    // Reach into the pillar tops at both ends so the bar is anchored.
+    const double ex = dx / len * pillar_radius * 0.5, ey = dy / len * pillar_radius * 0.5;
+    std::vector<std::vector<Point>> out;
+    for (int side : {-1, 1}) {
+        Point a{br.x0 - ex + side * nx, br.y0 - ey + side * ny}, b{br.x1 + ex + side * nx, br.y1 + ey + side * ny};
+        out.push_back(side < 0 ? std::vector<Point>{a, b} : std::vector<Point>{b, a});
     }
     return out;
 }

@@ -45,6 +45,10 @@ inline constexpr double kBridgeThickness = 0.4;
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
                         const plan::Obstacles* obstacles = nullptr);
 
+// The two side-by-side lines of a bar's layer, in printing order, each
+// reaching half a pillar radius past the bar's ends into the pillar tops.
+std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, double pillar_radius);
+
 // A closed loop whose outer edge is at radius r (centre line r - width/2).
 std::vector<Point> loop(double cx, double cy, double r, double width);
 

@@ -1,0 +1,23 @@
+#pragma once
+// The planner's bars judged by METHOD's rule (b) on the paths as built: each
+// bar line must be held by the beads beneath it (the model, and support up
+// to three layers down) at both ends, within the bridge limit, leaving each
+// held end across the edge of the footprint (layers::run_crosses), or be a
+// dangling end of at most 1 mm. A bar passing beside a column it does not
+// rest on (along the column's edge, within reach) fails: the pipeline plans
+// again without it.
+#include <cstddef>
+#include <vector>
+
+#include "gcode/settings.hpp"
+#include "layers/layer_stack.hpp"
+#include "plan/scaffold.hpp"
+#include "toolpath/support_paths.hpp"
+
+namespace scaffold::toolpath {
+
+// Indices into scaffold.bridges of the bars some line of which is not held.
+std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
+                                     const layers::LayerStack& stack, const Settings& settings);
+
+}  // namespace scaffold::toolpath
