@@ -30,7 +30,7 @@ namespace {
 // Rounds of points for what tips set off their points leave unheld.
 constexpr int kCoverRounds = 3;
 // Plans made again without the bars the one before could not hold as built.
-constexpr int kBarRounds = 4;
+constexpr int kBarRounds = 6;
 
 using Clock = std::chrono::steady_clock;
 

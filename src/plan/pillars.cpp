@@ -100,7 +100,9 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(proto, layer.z, s);
         // Only the contact itself (the top two layers) may come close to the model.
-        double need = r + clearance_at(proto, layer.z, s);
+        // Half a cell more than the gap: the model's raster falls up to half
+        // a cell short of a bead's edge, the validator measures from the bead.
+        double need = r + clearance_at(proto, layer.z, s) + s.resolution / 2;
         bool first = path.empty();
         if (trunks && !first && !trunks->at(l).empty()) {
             // Stand on a trunk whose loop here holds our loop above (its

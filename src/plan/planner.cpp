@@ -254,6 +254,9 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
     return out;
 }
 
+// How near a bar's ends must lie to a forbidden bar's to be forbidden too.
+constexpr double kForbiddenNear = 1.0;
+
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s, const std::vector<Bridge>& forbidden) {
     // Layers by z without purge lines: the layer above a height.
@@ -272,12 +275,14 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
     // Bars whose lines a plan before this one failed to hold (toolpath::
-    // unheld_bars) are not taken again.
+    // unheld_bars) are not taken again, nor bars next to them (ends within
+    // kForbiddenNear, a layer or so apart), which would fail the same way.
     auto is_forbidden = [&](double z, double x0, double y0, double x1, double y1) {
-        auto same = [](double a, double b) { return std::abs(a - b) < 1e-9; };
+        auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
         for (const Bridge& f : forbidden)
-            if (same(f.z, z) && ((same(f.x0, x0) && same(f.y0, y0) && same(f.x1, x1) && same(f.y1, y1)) ||
-                                 (same(f.x0, x1) && same(f.y0, y1) && same(f.x1, x0) && same(f.y1, y0))))
+            if (std::abs(f.z - z) < 1.5 * s.layer_height &&
+                ((near(f.x0, f.y0, x0, y0) && near(f.x1, f.y1, x1, y1)) ||
+                 (near(f.x0, f.y0, x1, y1) && near(f.x1, f.y1, x0, y0))))
                 return true;
         return false;
     };
