@@ -115,18 +115,22 @@ void finish_section(Island& s, double rx, double ry) {
 }
 
 // The weakest islands, one per spot: a column's layers are all weak near
-// its top, so a nearer, weaker one replaces the one listed.
+// its top, so the weakest of those within kSameSpot of each other stands
+// for them all.
 void add_weak(std::vector<WeakIsland>& v, const WeakIsland& w, int keep) {
-    for (auto& e : v)
+    WeakIsland best = w;
+    std::size_t n = 0;
+    for (const WeakIsland& e : v) {
         if (std::hypot(e.x - w.x, e.y - w.y) < kSameSpot) {
-            if (w.k < e.k) e = w;
-            std::stable_sort(v.begin(), v.end(), [](const WeakIsland& a, const WeakIsland& b) { return a.k < b.k; });
-            return;
+            if (e.k <= best.k) best = e;
+            continue;
         }
-    if (static_cast<int>(v.size()) >= keep && keep > 0 && !(w.k < v.back().k)) return;
-    v.push_back(w);
+        v[n++] = e;
+    }
+    v.resize(n);
+    v.push_back(best);
     std::stable_sort(v.begin(), v.end(), [](const WeakIsland& a, const WeakIsland& b) { return a.k < b.k; });
-    if (static_cast<int>(v.size()) > keep) v.resize(std::max(0, keep));
+    if (static_cast<int>(v.size()) > keep) v.resize(static_cast<std::size_t>(std::max(0, keep)));
 }
 
 // Whether the model's footprint covers a cell, holes up to kSmallHoleMm2
