@@ -64,7 +64,8 @@ struct Island {
     double area = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
     double cx = 0, cy = 0, i_min = 0;  // centroid (mm), smaller principal moment (mm^4)
     double len_added = 0, len_original = 0, filament = 0;
-    std::vector<int> parents;      // islands of the previous support layer it overlaps
+    int from = -1;                 // the support layer below it stands on (index into the recent ones)
+    std::vector<int> parents;      // the islands of that layer it overlaps
     std::size_t over_support = 0;  // its cells over them (one cell of slack)
     int children = 0;
     Path path;
@@ -206,7 +207,8 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
     };
     auto side_of = [&](const Island& s) -> StandingSide& { return s.len_original > s.len_added ? r.original : r.added; };
 
-    SupportLayer prev, cur;
+    SupportLayer cur;
+    std::vector<SupportLayer> recent;  // the support layers just below, oldest first
     std::vector<std::uint32_t> sup;  // the layer's support segments
     Footprint foot;
     foot.limit = static_cast<std::size_t>(std::floor(kSmallHoleMm2 / (cell * cell) + 1e-9));
@@ -351,29 +353,36 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
         }
         for (Island& s : cur.islands) finish_section(s, rx, ry);
 
-        // Parents: islands of the nearest lower support layer that overlap,
-        // with one cell of slack.
+        // Parents: the islands it overlaps (one cell of slack) on the nearest
+        // lower layer that holds support under it, within two nominal
+        // layers: a slicer's support has layer heights of its own beside
+        // the model's (a column at 14.4 and 14.7 mm, interface at 14.6).
         const double hw = std::max(h_nom, layer.nominal_height);
-        const bool has_prev = prev.index >= 0 && layer.z > prev.z + kZEps && layer.z - prev.z <= kPathLayers * hw + 1e-3;
-        auto over_support = [&](int gi, int gj, std::vector<int>* into) {
+        while (!recent.empty() && !(recent.front().z > layer.z - kPathLayers * hw - 1.0 && recent.front().z < layer.z + 1.0))
+            recent.erase(recent.begin());  // too far below, or a sequential print's earlier object
+        auto over_support = [&](const SupportLayer& below, int gi, int gj, std::vector<int>* into) {
             bool any = false;
             for (int dj = -1; dj <= 1; ++dj)
                 for (int di = -1; di <= 1; ++di) {
-                    const int p = prev.at(gi + di, gj + dj);
+                    const int p = below.at(gi + di, gj + dj);
                     if (p < 0) continue;
                     any = true;
                     if (into && std::find(into->begin(), into->end(), p) == into->end()) into->push_back(p);
                 }
             return any;
         };
-        if (has_prev) {
-            for (std::size_t c = 0; c < comps.size(); ++c) {
-                Island& s = cur.islands[c];
+        for (std::size_t c = 0; c < comps.size(); ++c) {
+            Island& s = cur.islands[c];
+            for (int h = static_cast<int>(recent.size()) - 1; h >= 0 && s.parents.empty(); --h) {
+                const SupportLayer& below = recent[h];
+                if (!(layer.z > below.z + kZEps && layer.z - below.z <= kPathLayers * hw + 1e-3)) continue;
+                s.over_support = 0;
                 for (const layers::Cell& q : comps[c])
-                    if (over_support(q.i + cur.i0, q.j + cur.j0, &s.parents)) ++s.over_support;
-                std::sort(s.parents.begin(), s.parents.end());
-                for (int p : s.parents) ++prev.islands[p].children;
+                    if (over_support(below, q.i + cur.i0, q.j + cur.j0, &s.parents)) ++s.over_support;
+                if (!s.parents.empty()) s.from = h;
             }
+            std::sort(s.parents.begin(), s.parents.end());
+            for (int p : s.parents) ++recent[s.from].islands[p].children;
         }
 
         // The model's footprint below, drawn when an island may stand on it.
@@ -411,7 +420,8 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             Island& s = cur.islands[c];
             const double ei = e_mod * std::max(s.i_min, kMinI);
             const bool parented = !s.parents.empty();
-            const double a = parented ? prev.z : layer.z - layer.height;
+            const SupportLayer* below = parented ? &recent[s.from] : nullptr;
+            const double a = parented ? below->z : layer.z - layer.height;
             bool bed = !parented && layer.z <= z_first + kBedLayers * h_nom + 1e-3;
             bool on_model = false;
             const std::size_t not_over = s.cells - s.over_support;
@@ -420,7 +430,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
                 std::size_t on = 0;
                 for (const layers::Cell& q : comps[c]) {
                     const int gi = q.i + cur.i0, gj = q.j + cur.j0;
-                    if (has_prev && over_support(gi, gj, nullptr)) continue;
+                    if (below && over_support(*below, gi, gj, nullptr)) continue;
                     if (foot.covers(gi, gj)) ++on;
                 }
                 on_model = static_cast<double>(on) >= kOnModelShare * static_cast<double>(not_over);
@@ -441,7 +451,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             // quarter of the strongest, not all on one line.
             groups.clear();
             for (int p : s.parents) {
-                const Island& q = prev.islands[p];
+                const Island& q = below->islands[p];
                 if (q.floating) continue;
                 const int root = find(q.column);
                 const double k = 1 / q.path.compliance(layer.z);
@@ -490,12 +500,12 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             int best = -1;
             double best_c = std::numeric_limits<double>::infinity();
             for (int p : s.parents) {
-                const Island& q = prev.islands[p];
+                const Island& q = below->islands[p];
                 if (q.floating) continue;
                 const double cp = q.path.compliance(layer.z);
                 if (cp < best_c) { best_c = cp; best = p; }
             }
-            s.path = prev.islands[best].path;
+            s.path = below->islands[best].path;
             s.path.add(a, layer.z, ei);
         }
         // Columns: a base, a floating start or a brace node starts one;
@@ -508,17 +518,18 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
                 s.column = fresh();
                 continue;
             }
-            const Island& p0 = prev.islands[s.parents[0]];
+            const std::vector<Island>& below = recent[s.from].islands;
+            const Island& p0 = below[s.parents[0]];
             if (s.parents.size() == 1 && p0.node && p0.children == 1 && 2 * s.cells >= p0.cells) {
                 s.column = p0.column;
                 s.node = true;
                 continue;
             }
             bool on_node = false;
-            for (int p : s.parents) on_node = on_node || prev.islands[p].node;
+            for (int p : s.parents) on_node = on_node || below[p].node;
             s.column = on_node ? fresh() : find(p0.column);
             for (int p : s.parents)
-                if (!prev.islands[p].node) uf[find(prev.islands[p].column)] = find(s.column);
+                if (!below[p].node) uf[find(below[p].column)] = find(s.column);
         }
 
         // The rule, per island of at least the minimum area.
@@ -536,7 +547,8 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             add_weak(side.weakest, {L, layer.z, s.cx, s.cy, k, s.floating ? 0.0 : layer.z - s.path.z_ref, area_mm2, s.floating},
                      o.worst);
         }
-        std::swap(prev, cur);
+        recent.push_back(std::move(cur));
+        cur = SupportLayer{};
     }
     return r;
 }

@@ -268,3 +268,30 @@ TEST(Standing, TheOriginalsSupportIsReportedApart) {
     EXPECT_NEAR(r.standing.original.weakest_k, 0.1109, 0.0005);
     EXPECT_EQ(r.standing.original.under, 124);
 }
+
+TEST(Standing, PathSkipsSupportOfAnotherHeightBeside) {
+    // Slicers print support on layer heights of their own: a ring on the
+    // 0.2 mm grid to z 10, and 10 mm away a small block printed only at
+    // z 5.1 (on the bed's layers below it, 0.1 mm layers from 4.9). The
+    // nearest lower layer holding support under the ring at 5.2 is 5.0,
+    // not 5.1: the ring stands as before, k = 7.10 N/mm at its top.
+    SynthGcode g = start();
+    for (int l = 1; l <= 50; ++l) {
+        g.layer(0.2 * l);
+        ring(g, 100, 100);
+        if (l == 25) {
+            g.type("Support material");
+            g.filled_rect(110, 98, 112, 102);
+            g.layer(5.1);
+            g.type("Support material");
+            g.filled_rect(110, 98, 112, 102);
+        }
+        if (l <= 24) {
+            g.type("Support material");
+            g.filled_rect(110, 98, 112, 102);
+        }
+    }
+    auto r = run(g);
+    EXPECT_EQ(r.standing.added.floating, 0) << check::report_text(r);
+    EXPECT_NEAR(r.standing.added.weakest_k, 7.098, 0.03) << check::report_text(r);
+}
