@@ -540,6 +540,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             const double k = s.floating ? 0.0 : 1 / s.path.compliance(layer.z);
             ++side.islands;
             if (side.weakest_k < 0 || k < side.weakest_k) side.weakest_k = k;
+            if (!s.floating && (side.weakest_standing_k < 0 || k < side.weakest_standing_k)) side.weakest_standing_k = k;
             if (k < o.min_stiffness) {
                 ++side.under;
                 side.under_filament_mm += s.filament;
@@ -585,13 +586,14 @@ std::string side_text(const StandingSide& s, const char* indent) {
 std::string side_summary(const StandingSide& s, double min_k) {
     return std::to_string(s.islands) + " islands, " + std::to_string(s.under) + " under " + fixed(min_k, 2) + " N/mm (" +
            fixed(s.under_filament_mm, 1) + " mm of filament), " + std::to_string(s.floating) + " floating, " +
-           std::to_string(s.braces) + " braces" + (s.weakest_k >= 0 ? "; weakest " + fixed(s.weakest_k, 3) + " N/mm" : "") + "\n";
+           std::to_string(s.braces) + " braces" + (s.weakest_k >= 0 ? "; weakest " + fixed(s.weakest_k, 3) + " N/mm" : "") +
+           (s.floating && s.weakest_standing_k >= 0 ? ", not floating " + fixed(s.weakest_standing_k, 3) + " N/mm" : "") + "\n";
 }
 
 std::string side_json(const StandingSide& s) {
     std::string o = "{\"islands\": " + std::to_string(s.islands) + ", \"under\": " + std::to_string(s.under) +
                     ", \"floating\": " + std::to_string(s.floating) + ", \"braces\": " + std::to_string(s.braces) +
-                    ", \"under_filament_mm\": " + fixed(s.under_filament_mm, 2) + ", \"weakest_k\": " + fixed(s.weakest_k, 4) +
+                    ", \"under_filament_mm\": " + fixed(s.under_filament_mm, 2) + ", \"weakest_k\": " + fixed(s.weakest_k, 4) + ", \"weakest_standing_k\": " + fixed(s.weakest_standing_k, 4) +
                     ", \"weakest\": [";
     for (std::size_t i = 0; i < s.weakest.size(); ++i) {
         const WeakIsland& w = s.weakest[i];

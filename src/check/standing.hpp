@@ -52,6 +52,7 @@ struct StandingSide {
     int braces = 0;               // brace nodes
     double under_filament_mm = 0; // filament in the islands under min_stiffness
     double weakest_k = -1;        // -1: no island
+    double weakest_standing_k = -1;  // the same over the islands that are not floating
     std::vector<WeakIsland> weakest;  // weakest first, one per place (2 mm apart)
     int travels = 0;              // travels crossing this side's fresh support
     std::vector<TravelCrossing> first_travels;  // the first few, in file order

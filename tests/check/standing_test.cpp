@@ -147,6 +147,8 @@ TEST(Standing, PillarOnTheModelAndFloating) {
     EXPECT_NEAR(s.weakest[1].x, 105, 0.01);
     EXPECT_NEAR(s.weakest[1].k, 7.098, 0.03);
     EXPECT_NEAR(s.weakest[1].height, 10, 1e-6);
+    EXPECT_EQ(s.weakest_k, 0);
+    EXPECT_NEAR(s.weakest_standing_k, 7.098, 0.03);  // the ring on the model
     EXPECT_FALSE(r.ok());
 }
 
