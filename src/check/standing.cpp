@@ -175,6 +175,92 @@ struct Footprint {
     }
 };
 
+// Cells on one lattice for every grid of the rule, so a cell of one layer's
+// grid is the same place in the next one's.
+struct Lattice {
+    double ox = 0, oy = 0, cell = 0.1;
+    int col(double x) const { return static_cast<int>(std::floor((x - ox) / cell)); }
+    int row(double y) const { return static_cast<int>(std::floor((y - oy) / cell)); }
+    layers::BitGrid grid(int i0, int j0, int nx, int ny) const {
+        return layers::BitGrid(ox + i0 * cell, oy + j0 * cell, ox + (i0 + nx) * cell, oy + (j0 + ny) * cell, cell);
+    }
+};
+
+// Travels over one layer's fresh support (the box holds its beads): support
+// is drawn, grown by the clearance, as it is printed; a chain of travel
+// moves between two extrusions counts once where, after leaving the support
+// it may start from, it comes near fresh support low enough to touch it and
+// then leaves it again (reaching the next bead is no crossing).
+void count_travels(const gcode::Program& program, const layers::Layer& layer, const std::vector<SupportOwner>& owner,
+                   const Lattice& lat, const layers::Bounds& box, const StandingOptions& o, StandingReport& r) {
+    const double pad = o.travel_clearance + 2 * lat.cell;
+    const int i0 = lat.col(box.min_x - pad), j0 = lat.row(box.min_y - pad);
+    layers::BitGrid keep_added = lat.grid(i0, j0, lat.col(box.max_x + pad) - i0 + 1, lat.row(box.max_y + pad) - j0 + 1);
+    layers::BitGrid keep_original = keep_added;
+    const double bx0 = lat.ox + i0 * lat.cell, by0 = lat.oy + j0 * lat.cell;
+    const double bx1 = bx0 + keep_added.width() * lat.cell, by1 = by0 + keep_added.height() * lat.cell;
+    auto first = std::lower_bound(program.moves.begin(), program.moves.end(), layer.first_line,
+                                  [](const gcode::Move& m, std::uint32_t line) { return m.line < line; });
+    std::size_t p = 0;  // the layer's segments follow its moves in order
+    bool left = false, pend_a = false, pend_o = false, done_a = false, done_o = false;
+    TravelCrossing at;
+    const double low_z = layer.z + o.travel_lift - 1e-9;
+    auto confirm = [&] {
+        if (pend_a && !done_a) {
+            done_a = true;
+            if (r.added.travels++ < kTravelNotes) r.added.first_travels.push_back(at);
+        }
+        if (pend_o && !done_o) {
+            done_o = true;
+            if (r.original.travels++ < kTravelNotes) r.original.first_travels.push_back(at);
+        }
+        pend_a = pend_o = false;
+    };
+    for (auto it = first; it != program.moves.end() && it->line < layer.end_line; ++it) {
+        const gcode::Move& m = *it;
+        const std::size_t mi = static_cast<std::size_t>(it - program.moves.begin());
+        if (m.kind == gcode::MoveKind::Extrude) {
+            left = pend_a = pend_o = done_a = done_o = false;  // a new chain after this bead
+            while (p < layer.segments.size() && layer.segments[p].move < mi) ++p;
+            if (p < layer.segments.size() && layer.segments[p].move == mi && owner[mi] != SupportOwner::None) {
+                const layers::Segment& sg = layer.segments[p];
+                (owner[mi] == SupportOwner::Added ? keep_added : keep_original)
+                    .draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 2 * o.travel_clearance);
+            }
+            continue;
+        }
+        if (m.kind != gcode::MoveKind::Travel) continue;  // retractions and wipes keep the chain
+        const double dx = m.x1 - m.x0, dy = m.y1 - m.y0, len = std::hypot(dx, dy);
+        if (len <= 0) continue;
+        if (std::max(m.x0, m.x1) < bx0 || std::min(m.x0, m.x1) > bx1 || std::max(m.y0, m.y1) < by0 ||
+            std::min(m.y0, m.y1) > by1) {
+            left = true;  // all of it far from the support
+            confirm();
+            continue;
+        }
+        const int n = std::max(1, static_cast<int>(std::ceil(len / lat.cell)));
+        for (int i = 0; i <= n; ++i) {
+            const double t = static_cast<double>(i) / n;
+            const double x = m.x0 + dx * t, y = m.y0 + dy * t, z = m.z0 + (m.z1 - m.z0) * t;
+            const int ci = lat.col(x) - i0, cj = lat.row(y) - j0;
+            const bool a = keep_added.get(ci, cj), b = keep_original.get(ci, cj);
+            if (!left) {
+                left = !a && !b;
+                continue;
+            }
+            if (a || b) {
+                if (z < low_z) {
+                    if (!pend_a && !pend_o) at = {m.line, layer.z, x, y};
+                    pend_a = pend_a || a;
+                    pend_o = pend_o || b;
+                }
+            } else if (pend_a || pend_o) {
+                confirm();
+            }
+        }
+    }
+}
+
 }  // namespace
 
 StandingReport standing(const gcode::Program& program, const layers::LayerStack& stack,
@@ -182,13 +268,11 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
     StandingReport r;
     r.min_stiffness = o.min_stiffness;
     if (stack.layers.empty() || owner.size() != program.moves.size()) return r;
-    const double cell = o.resolution;
-    const double ox = stack.bounds.min_x - 5, oy = stack.bounds.min_y - 5;  // the lattice of every grid here
-    auto gcol = [&](double x) { return static_cast<int>(std::floor((x - ox) / cell)); };
-    auto grow = [&](double y) { return static_cast<int>(std::floor((y - oy) / cell)); };
-    auto box_grid = [&](int i0, int j0, int nx, int ny) {
-        return layers::BitGrid(ox + i0 * cell, oy + j0 * cell, ox + (i0 + nx) * cell, oy + (j0 + ny) * cell, cell);
-    };
+    const Lattice lattice{stack.bounds.min_x - 5, stack.bounds.min_y - 5, o.resolution};  // of every grid here
+    const double cell = lattice.cell, ox = lattice.ox, oy = lattice.oy;
+    auto gcol = [&](double x) { return lattice.col(x); };
+    auto grow = [&](double y) { return lattice.row(y); };
+    auto box_grid = [&](int i0, int j0, int nx, int ny) { return lattice.grid(i0, j0, nx, ny); };
     const double h_nom = settings.layer_height > 0 ? settings.layer_height : 0.2;
     double z_first = 0;
     for (const layers::Layer& l : stack.layers)
@@ -215,10 +299,6 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
     struct Group { int root; double k, area, x, y; };
     std::vector<Group> groups;
 
-    // Travel state, per chain of travel moves between two extrusions.
-    layers::BitGrid keep_added, keep_original;
-    int kb_i0 = 0, kb_j0 = 0;
-
     for (int L = 0; L < static_cast<int>(stack.layers.size()); ++L) {
         const layers::Layer& layer = stack.layers[L];
         if (layer.purge) continue;
@@ -236,81 +316,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
         }
         if (sup.empty()) continue;
 
-        // Travels: support is drawn (grown by the clearance) as it is
-        // printed; a chain of travels counts where, after leaving the
-        // support it may start from, it comes back near fresh support low
-        // enough to touch it and then leaves it again (reaching the next
-        // bead is no crossing).
-        {
-            const double pad = wmax / 2 + o.travel_clearance + 2 * cell;
-            kb_i0 = gcol(x0 - pad);
-            kb_j0 = grow(y0 - pad);
-            const int nx = gcol(x1 + pad) - kb_i0 + 1, ny = grow(y1 + pad) - kb_j0 + 1;
-            keep_added = box_grid(kb_i0, kb_j0, nx, ny);
-            keep_original = keep_added;
-            const double bx0 = ox + kb_i0 * cell, by0 = oy + kb_j0 * cell;
-            const double bx1 = bx0 + keep_added.width() * cell, by1 = by0 + keep_added.height() * cell;
-            auto first = std::lower_bound(program.moves.begin(), program.moves.end(), layer.first_line,
-                                          [](const gcode::Move& m, std::uint32_t line) { return m.line < line; });
-            std::size_t p = 0;  // the layer's segments follow its moves in order
-            bool left = false, pend_a = false, pend_o = false, done_a = false, done_o = false;
-            TravelCrossing at;
-            const double low_z = layer.z + o.travel_lift - 1e-9;
-            auto confirm = [&] {
-                if (pend_a && !done_a) {
-                    done_a = true;
-                    if (r.added.travels++ < kTravelNotes) r.added.first_travels.push_back(at);
-                }
-                if (pend_o && !done_o) {
-                    done_o = true;
-                    if (r.original.travels++ < kTravelNotes) r.original.first_travels.push_back(at);
-                }
-                pend_a = pend_o = false;
-            };
-            for (auto it = first; it != program.moves.end() && it->line < layer.end_line; ++it) {
-                const gcode::Move& m = *it;
-                const std::size_t mi = static_cast<std::size_t>(it - program.moves.begin());
-                if (m.kind == gcode::MoveKind::Extrude) {
-                    left = pend_a = pend_o = done_a = done_o = false;  // a new chain after this bead
-                    while (p < layer.segments.size() && layer.segments[p].move < mi) ++p;
-                    if (p < layer.segments.size() && layer.segments[p].move == mi && owner[mi] != SupportOwner::None) {
-                        const layers::Segment& sg = layer.segments[p];
-                        (owner[mi] == SupportOwner::Added ? keep_added : keep_original)
-                            .draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 2 * o.travel_clearance);
-                    }
-                    continue;
-                }
-                if (m.kind != gcode::MoveKind::Travel) continue;
-                const double dx = m.x1 - m.x0, dy = m.y1 - m.y0, len = std::hypot(dx, dy);
-                if (len <= 0) continue;
-                if (std::max(m.x0, m.x1) < bx0 || std::min(m.x0, m.x1) > bx1 || std::max(m.y0, m.y1) < by0 ||
-                    std::min(m.y0, m.y1) > by1) {
-                    left = true;  // all of it far from the support
-                    confirm();
-                    continue;
-                }
-                const int n = std::max(1, static_cast<int>(std::ceil(len / cell)));
-                for (int i = 0; i <= n; ++i) {
-                    const double t = static_cast<double>(i) / n;
-                    const double x = m.x0 + dx * t, y = m.y0 + dy * t, z = m.z0 + (m.z1 - m.z0) * t;
-                    const int ci = gcol(x) - kb_i0, cj = grow(y) - kb_j0;
-                    const bool a = keep_added.get(ci, cj), b = keep_original.get(ci, cj);
-                    if (!left) {
-                        left = !a && !b;
-                        continue;
-                    }
-                    if (a || b) {
-                        if (z < low_z) {
-                            if (!pend_a && !pend_o) at = {m.line, layer.z, x, y};
-                            pend_a = pend_a || a;
-                            pend_o = pend_o || b;
-                        }
-                    } else if (pend_a || pend_o) {
-                        confirm();
-                    }
-                }
-            }
-        }
+        count_travels(program, layer, owner, lattice, {x0 - wmax / 2, y0 - wmax / 2, x1 + wmax / 2, y1 + wmax / 2}, o, r);
 
         // Islands: the layer's support drawn on a grid around it.
         const double pad = wmax / 2 + 2 * cell;
