@@ -69,6 +69,7 @@ struct Island {
     std::size_t over_support = 0;  // its cells over them (one cell of slack)
     int children = 0;
     Path path;
+    double k = 0;                  // at its top, N/mm
     bool floating = false;
     bool base = false;
     bool node = false;             // a brace node, or its sole continuation (the bar's second layer)
@@ -191,8 +192,12 @@ struct Lattice {
 // moves between two extrusions counts once where, after leaving the support
 // it may start from, it comes near fresh support low enough to touch it and
 // then leaves it again (reaching the next bead is no crossing).
+// Each crossing found is also kept in `found` (with its side: true for the
+// added support), to be judged against the layer's islands once known.
 void count_travels(const gcode::Program& program, const layers::Layer& layer, const std::vector<SupportOwner>& owner,
-                   const Lattice& lat, const layers::Bounds& box, const StandingOptions& o, StandingReport& r) {
+                   const Lattice& lat, const layers::Bounds& box, const StandingOptions& o, StandingReport& r,
+                   std::vector<std::pair<TravelCrossing, bool>>& found) {
+    found.clear();
     const double pad = o.travel_clearance + 2 * lat.cell;
     const int i0 = lat.col(box.min_x - pad), j0 = lat.row(box.min_y - pad);
     layers::BitGrid keep_added = lat.grid(i0, j0, lat.col(box.max_x + pad) - i0 + 1, lat.row(box.max_y + pad) - j0 + 1);
@@ -209,10 +214,12 @@ void count_travels(const gcode::Program& program, const layers::Layer& layer, co
         if (pend_a && !done_a) {
             done_a = true;
             if (r.added.travels++ < kTravelNotes) r.added.first_travels.push_back(at);
+            found.emplace_back(at, true);
         }
         if (pend_o && !done_o) {
             done_o = true;
             if (r.original.travels++ < kTravelNotes) r.original.first_travels.push_back(at);
+            found.emplace_back(at, false);
         }
         pend_a = pend_o = false;
     };
@@ -298,6 +305,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
     foot.limit = static_cast<std::size_t>(std::floor(kSmallHoleMm2 / (cell * cell) + 1e-9));
     struct Group { int root; double k, area, x, y; };
     std::vector<Group> groups;
+    std::vector<std::pair<TravelCrossing, bool>> crossings;  // the layer's travels over fresh support
 
     for (int L = 0; L < static_cast<int>(stack.layers.size()); ++L) {
         const layers::Layer& layer = stack.layers[L];
@@ -316,7 +324,8 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
         }
         if (sup.empty()) continue;
 
-        count_travels(program, layer, owner, lattice, {x0 - wmax / 2, y0 - wmax / 2, x1 + wmax / 2, y1 + wmax / 2}, o, r);
+        count_travels(program, layer, owner, lattice, {x0 - wmax / 2, y0 - wmax / 2, x1 + wmax / 2, y1 + wmax / 2}, o, r,
+                      crossings);
 
         // Islands: the layer's support drawn on a grid around it.
         const double pad = wmax / 2 + 2 * cell;
@@ -539,11 +548,11 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
         }
 
         // The rule, per island of at least the minimum area.
-        for (const Island& s : cur.islands) {
+        for (Island& s : cur.islands) {
+            const double k = s.k = s.floating ? 0.0 : 1 / s.path.compliance(layer.z);
             const double area_mm2 = static_cast<double>(s.cells) * cell * cell;
             if (area_mm2 < o.min_island_mm2) continue;
             StandingSide& side = side_of(s);
-            const double k = s.floating ? 0.0 : 1 / s.path.compliance(layer.z);
             ++side.islands;
             if (side.weakest_k < 0 || k < side.weakest_k) side.weakest_k = k;
             if (!s.floating && (side.weakest_standing_k < 0 || k < side.weakest_standing_k)) side.weakest_standing_k = k;
@@ -553,6 +562,17 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
             }
             add_weak(side.weakest, {L, layer.z, s.cx, s.cy, k, s.floating ? 0.0 : layer.z - s.path.z_ref, area_mm2, s.floating},
                      o.worst);
+        }
+        // A travel over weak support: the weakest island within its reach
+        // (the clearance beyond a bead's half width) where it first came near.
+        const int reach = static_cast<int>(std::ceil((o.travel_clearance + wmax / 2) / cell)) + 1;
+        for (const auto& [t, added] : crossings) {
+            const int gi = gcol(t.x), gj = grow(t.y);
+            double k = std::numeric_limits<double>::infinity();
+            for (int dj = -reach; dj <= reach; ++dj)
+                for (int di = -reach; di <= reach; ++di)
+                    if (const int id = cur.at(gi + di, gj + dj); id >= 0) k = std::min(k, cur.islands[id].k);
+            if (k < o.min_stiffness) ++(added ? r.added : r.original).weak_travels;
         }
         recent.push_back(std::move(cur));
         cur = SupportLayer{};
@@ -582,7 +602,8 @@ std::string side_text(const StandingSide& s, const char* indent) {
              ", " + fixed(w.y, 1) + "): " +
              (w.floating ? std::string("floating") : "k " + fixed(w.k, 3) + " N/mm, " + fixed(w.height, 2) + " mm above its base") +
              ", " + fixed(w.area_mm2, 2) + " mm^2\n";
-    o += std::string(indent).substr(2) + "travels crossing fresh support: " + std::to_string(s.travels) + "\n";
+    o += std::string(indent).substr(2) + "travels crossing fresh support: " + std::to_string(s.travels) + ", " +
+         std::to_string(s.weak_travels) + " of them over islands under the minimum stiffness\n";
     for (const TravelCrossing& t : s.first_travels)
         o += std::string(indent) + "line " + std::to_string(t.line + 1) + ": z " + fixed(t.z, 2) + " near (" + fixed(t.x, 2) +
              ", " + fixed(t.y, 2) + ")\n";
@@ -608,7 +629,8 @@ std::string side_json(const StandingSide& s) {
              ", \"height\": " + fixed(w.height, 2) + ", \"area_mm2\": " + fixed(w.area_mm2, 3) +
              ", \"floating\": " + (w.floating ? "true" : "false") + "}";
     }
-    o += "], \"travels\": " + std::to_string(s.travels) + ", \"first_travels\": [";
+    o += "], \"travels\": " + std::to_string(s.travels) + ", \"weak_travels\": " + std::to_string(s.weak_travels) +
+         ", \"first_travels\": [";
     for (std::size_t i = 0; i < s.first_travels.size(); ++i) {
         const TravelCrossing& t = s.first_travels[i];
         o += std::string(i ? ", " : "") + "{\"line\": " + std::to_string(t.line + 1) + ", \"z\": " + fixed(t.z, 3) +

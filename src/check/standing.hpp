@@ -56,6 +56,7 @@ struct StandingSide {
     std::vector<WeakIsland> weakest;  // weakest first, one per place (2 mm apart)
     int travels = 0;              // travels crossing this side's fresh support
     std::vector<TravelCrossing> first_travels;  // the first few, in file order
+    int weak_travels = 0;         // of those, over an island under min_stiffness (where they first come near it)
 };
 
 struct StandingReport {

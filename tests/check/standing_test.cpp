@@ -255,6 +255,7 @@ TEST(Standing, TravelOverFreshSupport) {
     EXPECT_NEAR(crossed.standing.added.first_travels[0].z, 0.2, 1e-6);
     // It first comes within 0.2 mm of the ring's outer edge (x 110 - 1.0).
     EXPECT_NEAR(crossed.standing.added.first_travels[0].x, 108.8, 0.15);
+    EXPECT_EQ(crossed.standing.added.weak_travels, 0);  // a 1 mm ring: k = 7097.8 N/mm
     EXPECT_EQ(scene(1).standing.added.travels, 0);
     EXPECT_EQ(scene(2).standing.added.travels, 0);
 }
@@ -296,4 +297,21 @@ TEST(Standing, PathSkipsSupportOfAnotherHeightBeside) {
     auto r = run(g);
     EXPECT_EQ(r.standing.added.floating, 0) << check::report_text(r);
     EXPECT_NEAR(r.standing.added.weakest_k, 7.098, 0.03) << check::report_text(r);
+}
+
+TEST(Standing, TravelOverWeakSupport) {
+    // The 40 mm ring (0.1109 N/mm at its top): on its last layer a travel
+    // leaves it, then crosses it from (100, 105) to (100, 95) before a model
+    // bead: one travel over fresh support, and over an island under 2 N/mm.
+    auto r = run(rings({{100, 100}}, 40, [](SynthGcode& g, double z) {
+        if (z < 39.9) return;
+        g.travel(100, 105);
+        g.travel(100, 95);
+        g.type("External perimeter");
+        g.extrude(101, 95);
+    }));
+    EXPECT_EQ(r.standing.added.travels, 1) << check::report_text(r);
+    EXPECT_EQ(r.standing.added.weak_travels, 1);
+    ASSERT_EQ(r.standing.added.first_travels.size(), 1u);
+    EXPECT_NEAR(r.standing.added.first_travels[0].y, 101.2, 0.15);  // 0.2 mm beyond the wall's outer edge at 101.0
 }
