@@ -774,6 +774,15 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     if (r.bad_extrusions) r.failures.push_back(std::to_string(r.bad_extrusions) + " extrusions with a width out of bounds");
     if (r.e_jumps) r.failures.push_back(std::to_string(r.e_jumps) + " E jumps");
     if (r.outside_bed) r.failures.push_back(std::to_string(r.outside_bed) + " extrusions outside the bed");
+    // METHOD's second rule, on its own (check/standing.cpp).
+    std::vector<SupportOwner> owner(out.moves.size(), SupportOwner::None);
+    for (std::size_t i = 0; i < out.moves.size(); ++i)
+        if (is_support_move(out.moves[i]))
+            owner[i] = is_slicer_support(out.moves[i]) ? SupportOwner::Original : SupportOwner::Added;
+    StandingOptions so = o.standing;
+    so.resolution = o.resolution;
+    r.standing = standing(out, stack, owner, settings, so);
+    standing_failures(r.standing, r.failures);
     if (!r.model_unchanged)
         r.failures.push_back("model changed (" + std::to_string(r.model_lines_missing) + " lines missing, " +
                              std::to_string(r.model_moves_changed) + " lines moving differently): " + r.model_change);
@@ -821,6 +830,7 @@ std::string report_text(const CheckReport& r) {
     o += "  print time estimate: " + fixed(r.print_time_s / 60, 1) + " min";
     if (r.original_print_time_s >= 0) o += " (original " + fixed(r.original_print_time_s / 60, 1) + " min)";
     o += "\n";
+    o += standing_text(r.standing);
     o += r.ok() ? "  PASS\n" : "  FAIL\n";
     for (const auto& f : r.failures) o += "    - " + f + "\n";
     return o;
@@ -869,6 +879,7 @@ std::string report_json(const CheckReport& r) {
     o += "  \"model_filament_mm\": " + fixed(r.model_filament_mm, 2) + ",\n";
     o += "  \"print_time_s\": " + fixed(r.print_time_s, 1) + ",\n";
     o += "  \"original_print_time_s\": " + fixed(r.original_print_time_s, 1) + ",\n";
+    o += "  \"standing\": " + standing_json(r.standing) + ",\n";
     o += "  \"failures\": [";
     for (std::size_t i = 0; i < r.failures.size(); ++i) o += std::string(i ? ", " : "") + json_string(r.failures[i]);
     o += "]\n}\n";

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "check/standing.hpp"
 #include "gcode/program.hpp"
 #include "gcode/settings.hpp"
 
@@ -34,6 +35,7 @@ struct CheckOptions {
     // a layer or two above or below does not count. 0: every cell counts.
     double min_region_mm2 = 1.0;
     int worst = 5;                 // worst layers listed
+    StandingOptions standing;      // METHOD's second rule (check/standing.hpp)
 };
 
 struct LayerIssue {
@@ -81,6 +83,7 @@ struct CheckReport {
     double model_filament_mm = 0;
     double print_time_s = 0;
     double original_print_time_s = -1;
+    StandingReport standing;       // METHOD's second rule: stiffness and travels
     std::vector<std::string> failures;  // reasons for exit 1
 
     bool ok() const { return failures.empty(); }

@@ -21,8 +21,10 @@ int main(int argc, char** argv) {
     po::options_description opts(
         "Usage: scaffold-check [options] FILE.gcode\n\n"
         "Simulates deposition layer by layer and reports what would print in mid-air\n"
-        "(unheld area), support that comes within the XY gap of the model, extrusion\n"
-        "amounts that make no sense, and a print-time estimate. It reads only G-code:\n"
+        "(unheld area), support that comes within the XY gap of the model, support\n"
+        "islands too weak to stand against the nozzle (--min-stiffness) and travels\n"
+        "over fresh support, extrusion amounts that make no sense, and a print-time\n"
+        "estimate. It reads only G-code:\n"
         "support is what is typed as support (;TYPE:Support material, Cura SUPPORT,\n"
         "Slic3r '; support material') or, with --original, what the original lacks.\n"
         "FILE and --original may be plain or binary G-code (.bgcode, recognised by content).\n\n"
@@ -39,6 +41,8 @@ int main(int argc, char** argv) {
         ("point-radius", po::value<double>(&o.point_radius)->default_value(o.point_radius), "radius a support contact tip holds, mm")
         ("bridge-limit", po::value<double>(&o.bridge_limit)->default_value(o.bridge_limit), "longest straight span of support or of a slicer-marked bridge held at both ends, mm")
         ("max-bridge", po::value<double>(&o.max_bridge), "longest straight span of any other bead held at both ends, mm (default: the file's max_bridge_length, else 10)")
+        ("min-stiffness", po::value<double>(&o.standing.min_stiffness)->default_value(o.standing.min_stiffness), "METHOD's Standing rule: every support island (of 0.05 mm^2 or more) must be at least this stiff at its top against the nozzle, N/mm, as a cantilever down to its base (bed, model or a brace of three columns); 0 reports the rule without failing")
+        ("modulus", po::value<double>(&o.standing.modulus)->default_value(o.standing.modulus), "Young's modulus of the filament for the Standing rule, N/mm^2 (PLA 3500)")
         ("resolution", po::value<double>(&o.resolution)->default_value(o.resolution, "0.1"), "raster cell, mm")
         ("quiet,q", "print nothing; only the exit status");
     po::options_description hidden;
@@ -61,6 +65,10 @@ int main(int argc, char** argv) {
     }
     if (!vm.count("file")) {
         std::cerr << "scaffold-check: no input file given (see --help)\n";
+        return 2;
+    }
+    if (!(o.standing.min_stiffness >= 0) || !(o.standing.modulus > 0)) {
+        std::cerr << "scaffold-check: --min-stiffness must be >= 0 and --modulus > 0\n";
         return 2;
     }
     if (!(o.resolution > 0 && o.resolution <= 2)) {

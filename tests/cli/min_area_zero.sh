@@ -16,7 +16,7 @@ fail=0
 for name in bust.cura413 figure.slic3r13 mug.prusaslicer25; do
   gzip -dc "$src/tests/data/corpus2/$name.nosup.gcode.gz" > "$tmp/in.gcode"
   "$build/scaffold" -q --min-overhang-area 0 "$tmp/in.gcode" -o "$tmp/out.gcode"
-  if "$build/scaffold-check" --tolerance-mm2 0 --min-region-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
+  if "$build/scaffold-check" --min-stiffness 0 --tolerance-mm2 0 --min-region-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
     grep -q "unheld area: 0.00 mm^2" "$tmp/report.txt" || { echo "FAIL $name: passed without 0.00 unheld?"; cat "$tmp/report.txt"; fail=1; }
     echo "ok $name"
   else
