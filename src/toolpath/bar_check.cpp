@@ -27,8 +27,10 @@ struct Bead {
 // Whether the line a -> b on a layer is held by `beads` beneath it.
 bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, double reach, double cell,
                double bridge_limit) {
-    const double x0 = std::min(a.x, b.x) - kMargin, x1 = std::max(a.x, b.x) + kMargin;
-    const double y0 = std::min(a.y, b.y) - kMargin, y1 = std::max(a.y, b.y) + kMargin;
+    // On the validator's lattice (multiples of the cell from the origin, as
+    // make_grid lays it): a bar grazing a loop is judged cell for cell alike.
+    const double x0 = std::floor((std::min(a.x, b.x) - kMargin) / cell) * cell, x1 = std::max(a.x, b.x) + kMargin;
+    const double y0 = std::floor((std::min(a.y, b.y) - kMargin) / cell) * cell, y1 = std::max(a.y, b.y) + kMargin;
     layers::BitGrid footprint(x0, y0, x1, y1, cell), held = footprint;
     for (const Bead& d : beads) {
         if (std::max(d.x0, d.x1) < x0 - reach || std::min(d.x0, d.x1) > x1 + reach ||
