@@ -120,10 +120,15 @@ private:
     }
 
     // Long travels are lifted by the slicer's z-hop; otherwise the nozzle
-    // rises before and descends after the XY move, never dragging down.
+    // rises before and descends after the XY move, never dragging down. A
+    // travel that would pass over support this block printed (METHOD's
+    // travel rule: within 0.2 mm of it, after leaving it) is lifted too: a
+    // thin column just printed is not to be knocked by the nozzle.
     void travel(double x, double y, double z) {
         double d = std::hypot(x - x_, y - y_);
-        if (s_.retract_lift > 0 && d > s_.retract_before_travel && retracted_) move_z(std::max(z_, z) + s_.retract_lift);
+        const bool over_fresh = crosses_fresh(x, y);
+        if (over_fresh) move_z(std::max(z_, z) + std::max(s_.retract_lift, kFreshLift));
+        else if (s_.retract_lift > 0 && d > s_.retract_before_travel && retracted_) move_z(std::max(z_, z) + s_.retract_lift);
         else if (z > z_ + 1e-6) move_z(z);
         if (d > 1e-6) {
             out_ += "G1";
@@ -136,6 +141,44 @@ private:
         x_ = x;
         y_ = y;
     }
+
+    // Whether the straight travel from here to (x, y) comes back within
+    // kFreshClearance of a bead this block printed after leaving them (it
+    // leaves the bead it starts on freely). With a margin both ways, as the
+    // validator measures on its raster: left once more than kFreshLeft clear,
+    // back once the gap has fallen again to within clearance plus margin.
+    bool crosses_fresh(double x, double y) const {
+        if (printed_.empty()) return false;
+        const double len = std::hypot(x - x_, y - y_);
+        const int n = std::max(1, static_cast<int>(std::ceil(len / kFreshStep)));
+        double widest = 0;
+        for (int i = 0; i <= n; ++i) {
+            const double t = static_cast<double>(i) / n, px = x_ + (x - x_) * t, py = y_ + (y - y_) * t;
+            double gap = 1e9;
+            for (const Bead& b : printed_) gap = std::min(gap, distance_to_segment(px, py, b) - b.width / 2);
+            widest = std::max(widest, gap);
+            if (widest > kFreshLeft && gap <= kFreshClearance + kFreshMargin && gap < widest - kFreshMargin) return true;
+        }
+        return false;
+    }
+
+    struct Bead {
+        double x0, y0, x1, y1, width;
+    };
+
+    static double distance_to_segment(double px, double py, const Bead& b) {
+        const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
+        double t = l2 > 0 ? ((px - b.x0) * dx + (py - b.y0) * dy) / l2 : 0;
+        t = std::clamp(t, 0.0, 1.0);
+        return std::hypot(px - (b.x0 + dx * t), py - (b.y0 + dy * t));
+    }
+
+    // METHOD's travel rule: 0.2 mm in XY, the nozzle at least 0.15 mm up.
+    static constexpr double kFreshClearance = 0.2;
+    static constexpr double kFreshLift = 0.2;
+    static constexpr double kFreshStep = 0.1;
+    static constexpr double kFreshLeft = 0.15;
+    static constexpr double kFreshMargin = 0.05;
 
     void move_z(double z) {
         out_ += "G1";
@@ -178,6 +221,7 @@ private:
             first = false;
             filament_ += de;
             length_ += len;
+            printed_.push_back({x_, y_, b.x, b.y, p.width});
             x_ = b.x;
             y_ = b.y;
         }
@@ -198,6 +242,7 @@ private:
     bool retracted_ = false, fan_changed_ = false;
     int fan_ = 0;
     double filament_ = 0, length_ = 0;
+    std::vector<Bead> printed_;  // this block's beads, for the travel rule
     std::string out_;
 };
 

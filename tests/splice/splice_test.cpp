@@ -192,3 +192,40 @@ TEST(Splice, ExtrudingEndsARetraction) {
     }
     EXPECT_NEAR(st.retracted_mm, 6.5, 1e-9);
 }
+
+// METHOD's travel rule: a travel that would pass over support this block
+// printed (within 0.2 mm of it after leaving it) rises 0.2 mm first and comes
+// down after; one that leaves its bead and never comes back does not.
+TEST(Splice, TravelOverFreshSupportIsLifted) {
+    gcode::Program in = gcode::parse(tower("", false, 0), "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    toolpath::SupportPaths paths;
+    toolpath::LayerPaths lp;
+    lp.layer = 1;  // z 0.4
+    auto line = [](double x0, double y0, double x1, double y1) {
+        toolpath::Path p;
+        p.points = {{x0, y0}, {x1, y1}};
+        p.retract = false;
+        return p;
+    };
+    lp.paths = {line(120, 105, 130, 105),   // A along y 105
+                line(125, 108, 125, 110),   // B: reached from A's end without coming back to A
+                line(125, 102, 127, 102)};  // C: reached from B across A
+    paths.layers.push_back(lp);
+    auto res = splice::splice(in, stack, paths, s);
+    ASSERT_EQ(res.edits.size(), 1u);
+    const std::string& block = res.edits[0].text;
+    const std::size_t b_start = block.find("X125 Y108");
+    const std::size_t c_start = block.find("X125 Y102");
+    ASSERT_NE(b_start, std::string::npos);
+    ASSERT_NE(c_start, std::string::npos);
+    const std::size_t a_end = block.find("X130 Y105");
+    ASSERT_NE(a_end, std::string::npos);
+    // A -> B: no Z move. B -> C: up to 0.6 before, down to 0.4 after.
+    EXPECT_EQ(block.substr(a_end, b_start - a_end).find(" Z"), std::string::npos) << block;
+    const std::string bc = block.substr(block.find("X125 Y110"), c_start - block.find("X125 Y110"));
+    EXPECT_NE(bc.find("G1 Z0.6"), std::string::npos) << block;
+    const std::size_t after_c = block.find('\n', c_start);
+    EXPECT_EQ(block.substr(after_c + 1, 9), "G1 Z0.4 F") << block;
+}
