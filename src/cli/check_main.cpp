@@ -27,6 +27,7 @@ std::vector<std::pair<std::string, scaffold::gcode::Program>> load(const std::st
     const std::string name = path == "-" ? "<stdin>" : path;
     std::vector<std::pair<std::string, Program>> out;
     if (!archive::is_zip(bytes)) {
+        archive::refuse_binary_3mf(path, bytes);
         out.emplace_back("", parse(std::move(bytes), name));
         return out;
     }

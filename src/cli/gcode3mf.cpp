@@ -1,5 +1,7 @@
 #include "cli/gcode3mf.hpp"
 
+#include <spdlog/sinks/ringbuffer_sink.h>
+
 #include <cctype>
 #include <map>
 #include <string>
@@ -42,6 +44,15 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
     const archive::Archive a = archive::open(bytes, path, limits);
     const std::vector<std::size_t> plates = archive::plates(a);
 
+    // What the plates' runs say is held back until every plate is done: a
+    // plate refused after others ran leaves just its one line.
+    auto held_sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(1024);
+    spdlog::logger held(log.name(), held_sink);
+    held.set_level(log.level());
+    auto say_held = [&] {
+        for (const auto& m : held_sink->last_raw()) log.log(m.level, "{}", std::string_view(m.payload.data(), m.payload.size()));
+    };
+
     std::map<std::size_t, std::string> replaced;
     std::vector<archive::PlateChange> changes;
     Outcome total;
@@ -53,8 +64,8 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
         // The printer checks this sum: a mismatch on input means the plate
         // was edited or damaged after slicing; the output's sum is made anew.
         if (md5 >= 0 && !same_md5(archive::read(a, static_cast<std::size_t>(md5), limits, budget), archive::md5_hex(text)))
-            log.warn("{} ({}.md5) does not match the plate's G-code (edited or damaged after slicing); going on", path, name);
-        if (plates.size() > 1) log.info("{}:", name);
+            held.warn("{} ({}.md5) does not match the plate's G-code (edited or damaged after slicing); going on", path, name);
+        if (plates.size() > 1) held.info("{}:", name);
         Request one = req;
         one.input = path + " (" + name + ")";
         one.input_text = &text;
@@ -62,7 +73,7 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
         one.output_text = &out;
         if (plates.size() > 1)
             for (auto& [kind, file] : one.files) file = for_plate(file, plate);
-        const Outcome o = run(one, log);
+        const Outcome o = run(one, held);
         if (out == text) continue;  // --method none
         replaced[index] = std::move(out);
         if (md5 >= 0) replaced[static_cast<std::size_t>(md5)] = archive::md5_hex(replaced[index]);
@@ -73,6 +84,7 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
     }
     if (replaced.empty()) {  // every plate unchanged: the archive's own bytes
         gcode::write_bytes(req.output, bytes);
+        say_held();
         return total;
     }
     // The printer shows these per plate; raised like the G-code's own totals.
@@ -83,6 +95,7 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
         if (raised != xml) replaced[static_cast<std::size_t>(info)] = std::move(raised);
     }
     gcode::write_bytes(req.output, archive::write(a, replaced));
+    say_held();
     return total;
 }
 

@@ -126,6 +126,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     } else {
         gcode::Text bytes = gcode::Text::load(req.input);
         if (gcode::archive::is_zip(bytes)) return run_gcode_3mf(req, bytes, log);
+        gcode::archive::refuse_binary_3mf(req.input, bytes);
         program = gcode::parse(std::move(bytes), req.input == "-" ? "<stdin>" : req.input);
     }
     time.lap("read");

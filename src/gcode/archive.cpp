@@ -4,6 +4,7 @@
 #include <minizip/zip.h>
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -159,6 +160,16 @@ bool is_gcode_3mf(std::string_view bytes) {
     return false;
 }
 
+void refuse_binary_3mf(const std::string& path, std::string_view bytes) {
+    std::string lower = path;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".3mf") != 0 || is_zip(bytes)) return;
+    for (char c : bytes.substr(0, 65536))
+        if (static_cast<unsigned char>(c) < 9)
+            throw Error(path, 0, "is named .3mf but is not a zip archive (a .gcode.3mf is one), nor G-code: damaged, or "
+                                 "not a sliced plate file");
+}
+
 int plate_number(std::string_view n) {
     constexpr std::string_view kPrefix = "Metadata/plate_", kSuffix = ".gcode";
     if (n.size() <= kPrefix.size() + kSuffix.size() || n.substr(0, kPrefix.size()) != kPrefix ||
@@ -176,6 +187,12 @@ int plate_number(std::string_view n) {
 
 Archive open(std::string_view bytes, const std::string& path, const Limits& limits) {
     if (!is_zip(bytes)) throw Error(path, 0, "is not a zip archive (no local file header at its start)");
+    // The end of directory record, whole, last: a file cut anywhere fails
+    // here or at its members' CRC (minizip forgives a record cut short).
+    std::size_t end = bytes.rfind(std::string_view("PK\5\6", 4));
+    if (end == std::string_view::npos || end + 22 > bytes.size() ||
+        end + 22 + (std::uint8_t(bytes[end + 20]) | std::uint8_t(bytes[end + 21]) << 8) != bytes.size())
+        throw Error(path, 0, "is a truncated zip archive (its end of directory record is missing or cut)");
     Reader r(bytes, path);
     unz_global_info64 g{};
     if (unzGetGlobalInfo64(r.get(), &g) != UNZ_OK) throw Error(path, 0, "the zip directory is damaged");

@@ -45,6 +45,11 @@ bool is_zip(std::string_view bytes);
 // only). Never throws.
 bool is_gcode_3mf(std::string_view bytes);
 
+// Throws scaffold::Error saying so when a file named *.3mf is not a zip but
+// binary (control bytes G-code never has): else the G-code reader would
+// report a line of binary bytes.
+void refuse_binary_3mf(const std::string& path, std::string_view bytes);
+
 // Lists the members; throws scaffold::Error naming `path` when the bytes are
 // not a zip minizip can read, a member name is absolute or has '..', or the
 // directory is beyond `limits`.
