@@ -136,10 +136,20 @@ void go_to(unzFile u, std::size_t index, const std::string& path) {
 }
 
 // zip64 sizes are the writer's to add again, from the sizes it writes.
-std::string without_zip64(std::string extra) {
-    int len = static_cast<int>(extra.size());
-    if (len > 0 && zipRemoveExtraInfoBlock(extra.data(), &len, 0x0001) == ZIP_OK) extra.resize(static_cast<std::size_t>(len));
-    return extra;
+// (Not minizip's zipRemoveExtraInfoBlock: it trusts each block's length and
+// copies a negative size on a damaged field; found by tests/fuzz.) A block
+// running past the end is kept as it is, with the rest.
+std::string without_zip64(const std::string& extra) {
+    std::string out;
+    std::size_t at = 0;
+    while (at + 4 <= extra.size()) {
+        const auto byte = [&](std::size_t i) { return static_cast<std::size_t>(static_cast<unsigned char>(extra[i])); };
+        const std::size_t id = byte(at) | byte(at + 1) << 8, len = byte(at + 2) | byte(at + 3) << 8;
+        if (at + 4 + len > extra.size()) break;
+        if (id != 0x0001) out.append(extra, at, 4 + len);
+        at += 4 + len;
+    }
+    return out.append(extra, at, std::string::npos);
 }
 
 }  // namespace
@@ -338,7 +348,7 @@ std::string write(const Archive& a, const std::map<std::size_t, std::string>& re
         if (unzOpenCurrentFile2(r.get(), &raw_method, &raw_level, 1) != UNZ_OK) throw fail(e.name, "cannot read it");
         std::string local(static_cast<std::size_t>(std::max(0, unzGetLocalExtrafield(r.get(), nullptr, 0))), '\0');
         if (!local.empty()) unzGetLocalExtrafield(r.get(), local.data(), static_cast<unsigned>(local.size()));
-        local = without_zip64(std::move(local));
+        local = without_zip64(local);
         if (zipOpenNewFileInZip4_64(z, e.name.c_str(), &zi, local.empty() ? nullptr : local.data(),
                                     static_cast<uInt>(local.size()), central.empty() ? nullptr : central.data(),
                                     static_cast<uInt>(central.size()), e.comment.empty() ? nullptr : e.comment.c_str(),

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "gcode/error.hpp"
+#include "support/files.hpp"
 #include "support/gcode3mf.hpp"
 
 using namespace scaffold::gcode;
@@ -221,4 +222,22 @@ TEST(Archive, SliceInfoRaisedForItsPlate) {
     EXPECT_EQ(unchanged, 2u);
     EXPECT_NE(r2.find("value=\"612\""), std::string::npos);
     EXPECT_EQ(r2.find("4.60"), std::string::npos);
+}
+
+// Found by tests/fuzz/archive_fuzz: a member's extra field whose last block
+// says it runs past the field's end (minizip's own zip64 filter copied a
+// negative size there). Its plate reads; writing stops at the member after
+// it, whose stored bytes are cut, with an error naming it.
+TEST(Archive, DamagedExtraFieldIsNotTrusted) {
+    const std::string zip = scaffold::testing::load_file(std::string(SCAFFOLD_TEST_DATA) +
+                                                         "/fuzz/gcode3mf-extra-field-past-its-end.gcode.3mf");
+    ASSERT_FALSE(zip.empty());
+    archive::Archive a = archive::open(zip, "t");
+    EXPECT_EQ(archive::read_plates(zip, "t").size(), 1u);
+    try {
+        archive::write(a, {});
+        FAIL() << "written";
+    } catch (const scaffold::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'Metadata/slice_info.config'"), std::string::npos) << e.what();
+    }
 }
