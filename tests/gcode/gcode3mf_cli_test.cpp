@@ -127,6 +127,12 @@ TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
     fs::copy_file(dir + "/in.gcode.3mf", dir + "/sliced.gcode");
     ASSERT_EQ(run("scaffold", "-q " + dir + "/sliced.gcode"), 0);
     EXPECT_TRUE(load_file(dir + "/sliced.gcode") == out);
+    // Side files: one per plate when there are several.
+    ASSERT_EQ(run("scaffold", "-q " + dir + "/in.gcode.3mf -o " + dir + "/rep.gcode.3mf --report " + dir + "/r.json"), 0);
+    EXPECT_TRUE(load_file(dir + "/rep.gcode.3mf") == out);
+    EXPECT_NE(load_file(dir + "/r.plate_1.json").find("\"points\": "), std::string::npos);
+    EXPECT_NE(load_file(dir + "/r.plate_2.json").find("(Metadata/plate_2.gcode)"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir + "/r.json"));
     // --method none: the archive byte for byte.
     ASSERT_EQ(run("scaffold", "-q --method none " + dir + "/in.gcode.3mf -o " + dir + "/none.gcode.3mf"), 0);
     EXPECT_TRUE(load_file(dir + "/none.gcode.3mf") == in);
