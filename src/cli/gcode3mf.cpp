@@ -59,7 +59,7 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
     for (std::size_t index : plates) {
         const std::string& name = a.members[index].name;
         const int plate = archive::plate_number(name);
-        const std::string text = archive::read(a, index, limits, budget);
+        std::string text = archive::read(a, index, limits, budget);
         const long md5 = archive::find(a, name + ".md5");
         // The printer checks this sum: a mismatch on input means the plate
         // was edited or damaged after slicing; the output's sum is made anew.
@@ -68,13 +68,13 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
         if (plates.size() > 1) held.info("{}:", name);
         Request one = req;
         one.input = path + " (" + name + ")";
-        one.input_text = &text;
+        one.input_text = &text;  // moved into the plate's run: one copy of a big plate, not two
         std::string out;
         one.output_text = &out;
         if (plates.size() > 1)
             for (auto& [kind, file] : one.files) file = for_plate(file, plate);
         const Outcome o = run(one, held);
-        if (out == text) continue;  // --method none
+        if (o.unchanged) continue;  // --method none
         replaced[index] = std::move(out);
         if (md5 >= 0) replaced[static_cast<std::size_t>(md5)] = archive::md5_hex(replaced[index]);
         changes.push_back({plate, o.support_mm / 1000, o.seconds_after - o.seconds_before});

@@ -122,7 +122,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     Timings time;
     gcode::Program program;
     if (req.input_text) {
-        program = gcode::parse(*req.input_text, req.input);
+        program = gcode::parse(std::move(*req.input_text), req.input);
     } else {
         gcode::Text bytes = gcode::Text::load(req.input);
         if (gcode::archive::is_zip(bytes)) return run_gcode_3mf(req, bytes, log);
@@ -140,7 +140,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
         if (req.output_text) *req.output_text = gcode::render_edited(program, {});
         else gcode::write_output(req.output, program, {}, format);
         log.info("--method none: written unchanged");
-        return {};
+        Outcome none;
+        none.unchanged = true;
+        return none;
     }
     // A vase is recognised by its setting or, where the file has none (Cura
     // hands scripts no settings), by Z rising through its extrusions.

@@ -18,9 +18,10 @@ struct Request {
     SettingMap overrides;                      // scaffold options by option name
     SettingMap slicer_overrides;               // --set KEY=VALUE
     std::string output_format;                 // "ascii", "binary" or empty: as the input
-    // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is read from
-    // here instead of `input`, and the output kept here instead of written.
-    const std::string* input_text = nullptr;
+    // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
+    // from here instead of reading `input`, and the output kept here instead
+    // of written.
+    std::string* input_text = nullptr;
     std::string* output_text = nullptr;
 };
 
@@ -28,6 +29,7 @@ struct Request {
 struct Outcome {
     double support_mm = 0;  // of the spool's filament
     double seconds_before = 0, seconds_after = 0;  // the validator's print time estimate; 0 when not made
+    bool unchanged = false;                        // --method none: the input as it was
 };
 
 // Throws scaffold::Error; on error nothing has been written to the output.
