@@ -224,6 +224,12 @@ Archive open(std::string_view bytes, const std::string& path, const Limits& limi
     }
     if (rc != UNZ_END_OF_LIST_OF_FILE) throw Error(path, 0, "the zip directory is damaged");
     if (a.members.size() != g.number_entry) throw Error(path, 0, "the zip directory's member count is wrong");
+    // A name twice: which copy a printer reads is anyone's guess.
+    std::vector<std::string_view> names;
+    for (const Member& m : a.members) names.push_back(m.name);
+    std::sort(names.begin(), names.end());
+    if (auto twice = std::adjacent_find(names.begin(), names.end()); twice != names.end())
+        throw Error(path, 0, "member '" + std::string(*twice) + "' appears twice in the zip: refused");
     return a;
 }
 

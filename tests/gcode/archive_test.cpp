@@ -141,6 +141,12 @@ TEST(Archive, RefusesPathsOutOfTheFolder) {
     }
 }
 
+TEST(Archive, RefusesANameTwice) {
+    std::vector<ZipMember> m = small_members();
+    m.push_back({"Metadata/plate_2.gcode", "G1 X3\n"});
+    EXPECT_THROW(archive::open(scaffold::testing::pack(m), "t"), scaffold::Error);
+}
+
 TEST(Archive, SizesThatLieAreCaught) {
     const std::string plate(5000, 'G');
     const std::string zip = scaffold::testing::pack({{"Metadata/plate_1.gcode", plate}});
