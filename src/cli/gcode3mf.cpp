@@ -25,7 +25,8 @@ std::string for_plate(const std::string& file, int plate) {
 }
 
 bool same_md5(std::string_view stored, const std::string& computed) {
-    while (!stored.empty() && (stored.back() == '\n' || stored.back() == '\r' || stored.back() == ' ')) stored.remove_suffix(1);
+    while (!stored.empty() && (stored.back() == '\n' || stored.back() == '\r' || stored.back() == ' '))
+        stored.remove_suffix(1);
     if (stored.size() != computed.size()) return false;
     for (std::size_t i = 0; i < stored.size(); ++i)
         if (std::toupper(static_cast<unsigned char>(stored[i])) != computed[i]) return false;
@@ -50,7 +51,8 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
     spdlog::logger held(log.name(), held_sink);
     held.set_level(log.level());
     auto say_held = [&] {
-        for (const auto& m : held_sink->last_raw()) log.log(m.level, "{}", std::string_view(m.payload.data(), m.payload.size()));
+        for (const auto& m : held_sink->last_raw())
+            log.log(m.level, "{}", std::string_view(m.payload.data(), m.payload.size()));
     };
 
     std::map<std::size_t, std::string> replaced;
@@ -63,8 +65,10 @@ Outcome run_gcode_3mf(const Request& req, const gcode::Text& bytes, spdlog::logg
         const long md5 = archive::find(a, name + ".md5");
         // The printer checks this sum: a mismatch on input means the plate
         // was edited or damaged after slicing; the output's sum is made anew.
-        if (md5 >= 0 && !same_md5(archive::read(a, static_cast<std::size_t>(md5), limits, budget), archive::md5_hex(text)))
-            held.warn("{} ({}.md5) does not match the plate's G-code (edited or damaged after slicing); going on", path, name);
+        if (md5 >= 0 &&
+            !same_md5(archive::read(a, static_cast<std::size_t>(md5), limits, budget), archive::md5_hex(text)))
+            held.warn("{} ({}.md5) does not match the plate's G-code (edited or damaged after slicing); going on", path,
+                      name);
         if (plates.size() > 1) held.info("{}:", name);
         Request one = req;
         one.input = path + " (" + name + ")";

@@ -71,7 +71,8 @@ public:
     Reader(std::string_view bytes, const std::string& path) : file_{bytes, nullptr, 0} {
         zlib_filefunc64_def funcs = mem_funcs(file_);
         unz_ = unzOpen2_64("archive", &funcs);
-        if (!unz_) throw Error(path, 0, "is not a zip archive scaffold can read (no valid central directory: truncated?)");
+        if (!unz_)
+            throw Error(path, 0, "is not a zip archive scaffold can read (no valid central directory: truncated?)");
     }
     ~Reader() {
         if (unz_) unzClose(unz_);
@@ -156,7 +157,8 @@ std::string without_zip64(const std::string& extra) {
 
 bool is_zip(std::string_view bytes) {
     // A member first, or (an empty zip) the end of the directory.
-    return bytes.size() >= 4 && (bytes.substr(0, 4) == std::string_view("PK\3\4", 4) || bytes.substr(0, 4) == std::string_view("PK\5\6", 4));
+    const std::string_view magic = bytes.substr(0, 4);
+    return magic == std::string_view("PK\3\4", 4) || magic == std::string_view("PK\5\6", 4);
 }
 
 bool is_gcode_3mf(std::string_view bytes) {
@@ -176,8 +178,9 @@ void refuse_binary_3mf(const std::string& path, std::string_view bytes) {
     if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".3mf") != 0 || is_zip(bytes)) return;
     for (char c : bytes.substr(0, 65536))
         if (static_cast<unsigned char>(c) < 9)
-            throw Error(path, 0, "is named .3mf but is not a zip archive (a .gcode.3mf is one), nor G-code: damaged, or "
-                                 "not a sliced plate file");
+            throw Error(path, 0,
+                        "is named .3mf but is not a zip archive (a .gcode.3mf is one), nor G-code: damaged, or "
+                        "not a sliced plate file");
 }
 
 int plate_number(std::string_view n) {
@@ -207,8 +210,9 @@ Archive open(std::string_view bytes, const std::string& path, const Limits& limi
     unz_global_info64 g{};
     if (unzGetGlobalInfo64(r.get(), &g) != UNZ_OK) throw Error(path, 0, "the zip directory is damaged");
     if (g.number_entry > limits.members)
-        throw Error(path, 0, "the zip lists " + std::to_string(g.number_entry) + " members, more than the " +
-                                 std::to_string(limits.members) + " scaffold reads");
+        throw Error(path, 0,
+                    "the zip lists " + std::to_string(g.number_entry) + " members, more than the " +
+                        std::to_string(limits.members) + " scaffold reads");
     Archive a;
     a.path = path;
     a.bytes = bytes;
@@ -217,8 +221,10 @@ Archive open(std::string_view bytes, const std::string& path, const Limits& limi
         Entry e = current_entry(r.get(), path);
         if (unsafe_name(e.name) || std::strlen(e.name.c_str()) != e.name.size())
             throw Error(path, 0, "member '" + e.name + "' has an absolute or '..' path: refused");
-        if (a.members.size() >= limits.members) throw Error(path, 0, "the zip has more members than its directory says");
-        a.members.push_back({e.name, e.info.uncompressed_size, e.info.compressed_size, static_cast<std::uint32_t>(e.info.crc),
+        if (a.members.size() >= limits.members)
+            throw Error(path, 0, "the zip has more members than its directory says");
+        a.members.push_back({e.name, e.info.uncompressed_size, e.info.compressed_size,
+                             static_cast<std::uint32_t>(e.info.crc),
                              static_cast<std::uint16_t>(e.info.compression_method)});
         rc = unzGoToNextFile(r.get());
     }
@@ -237,8 +243,10 @@ std::vector<std::size_t> plates(const Archive& a) {
     std::vector<std::size_t> out;
     for (std::size_t i = 0; i < a.members.size(); ++i)
         if (plate_number(a.members[i].name) > 0) out.push_back(i);
-    if (out.empty()) throw Error(a.path, 0, "is a zip archive without plate G-code (no Metadata/plate_N.gcode member): "
-                                            "export the sliced plate file (.gcode.3mf), not the project");
+    if (out.empty())
+        throw Error(a.path, 0,
+                    "is a zip archive without plate G-code (no Metadata/plate_N.gcode member): "
+                    "export the sliced plate file (.gcode.3mf), not the project");
     std::stable_sort(out.begin(), out.end(), [&](std::size_t x, std::size_t y) {
         return plate_number(a.members[x].name) < plate_number(a.members[y].name);
     });
@@ -255,12 +263,16 @@ std::string read(const Archive& a, std::size_t index, const Limits& limits, std:
     const Member& m = a.members.at(index);
     const std::string where = a.path + " (" + m.name + ")";
     if (m.method != 0 && m.method != Z_DEFLATED)
-        throw Error(where, 0, "is compressed with zip method " + std::to_string(m.method) + " (scaffold reads stored and deflate)");
+        throw Error(
+            where, 0,
+            "is compressed with zip method " + std::to_string(m.method) + " (scaffold reads stored and deflate)");
     if (m.size > limits.member_bytes || m.size > budget)
-        throw Error(where, 0, "says it holds " + mib(m.size) + ", beyond the " + mib(std::min(limits.member_bytes, budget)) +
-                                  " scaffold reads from an archive: refused");
+        throw Error(where, 0,
+                    "says it holds " + mib(m.size) + ", beyond the " + mib(std::min(limits.member_bytes, budget)) +
+                        " scaffold reads from an archive: refused");
     // Deflate cannot expand more than about 1032:1; a larger claim is a lie.
-    if ((m.method == 0 && m.size != m.compressed_size) || (m.method == Z_DEFLATED && m.size / 1032 > m.compressed_size + 1))
+    if ((m.method == 0 && m.size != m.compressed_size) ||
+        (m.method == Z_DEFLATED && m.size / 1032 > m.compressed_size + 1))
         throw Error(where, 0, "has sizes that do not fit its compression: the archive is damaged");
     Reader r(a.bytes, a.path);
     go_to(r.get(), index, a.path);
@@ -280,10 +292,13 @@ std::string read(const Archive& a, std::size_t index, const Limits& limits, std:
         out.append(buf.data(), static_cast<std::size_t>(n));
     }
     int closed = unzCloseCurrentFile(r.get());
-    if (n < 0) throw Error(where, 0, "cannot be inflated (zip error " + std::to_string(n) + "): the archive is damaged or truncated");
+    if (n < 0)
+        throw Error(where, 0,
+                    "cannot be inflated (zip error " + std::to_string(n) + "): the archive is damaged or truncated");
     if (out.size() != m.size)
-        throw Error(where, 0, "holds " + std::to_string(out.size()) + " bytes where the zip directory says " +
-                                  std::to_string(m.size) + ": the archive is damaged");
+        throw Error(where, 0,
+                    "holds " + std::to_string(out.size()) + " bytes where the zip directory says " +
+                        std::to_string(m.size) + ": the archive is damaged");
     if (closed == UNZ_CRCERROR) throw Error(where, 0, "fails its CRC check: the archive is damaged");
     if (closed != UNZ_OK) throw Error(where, 0, "cannot be read to its end: the archive is damaged");
     budget -= m.size;
@@ -334,7 +349,7 @@ std::string write(const Archive& a, const std::map<std::size_t, std::string>& re
         Entry e = current_entry(r.get(), a.path);
         zip_fileinfo zi{};
         zi.dosDate = e.info.dosDate;  // the member's own time: the output depends on the input alone
-        zi.tmz_date = {e.info.tmu_date.tm_sec, e.info.tmu_date.tm_min, e.info.tmu_date.tm_hour,
+        zi.tmz_date = {e.info.tmu_date.tm_sec,  e.info.tmu_date.tm_min, e.info.tmu_date.tm_hour,
                        e.info.tmu_date.tm_mday, e.info.tmu_date.tm_mon, e.info.tmu_date.tm_year};
         zi.internal_fa = e.info.internal_fa;
         zi.external_fa = e.info.external_fa;
@@ -345,10 +360,10 @@ std::string write(const Archive& a, const std::map<std::size_t, std::string>& re
         if (it != replacements.end()) {
             const std::string& data = it->second;
             int level = method == Z_DEFLATED ? Z_DEFAULT_COMPRESSION : 0;
-            if (zipOpenNewFileInZip4_64(z, e.name.c_str(), &zi, nullptr, 0, central.data(), static_cast<uInt>(central.size()),
-                                        e.comment.empty() ? nullptr : e.comment.c_str(), method, level, 0, -MAX_WBITS,
-                                        8, Z_DEFAULT_STRATEGY, nullptr, 0, e.info.version, flag,
-                                        data.size() >= 0xffffffffu) != ZIP_OK)
+            if (zipOpenNewFileInZip4_64(
+                    z, e.name.c_str(), &zi, nullptr, 0, central.data(), static_cast<uInt>(central.size()),
+                    e.comment.empty() ? nullptr : e.comment.c_str(), method, level, 0, -MAX_WBITS, 8,
+                    Z_DEFAULT_STRATEGY, nullptr, 0, e.info.version, flag, data.size() >= 0xffffffffu) != ZIP_OK)
                 throw fail(e.name, "cannot open it");
             for (std::size_t at = 0; at < data.size(); at += 1u << 30) {
                 unsigned n = static_cast<unsigned>(std::min<std::size_t>(data.size() - at, 1u << 30));
@@ -379,7 +394,8 @@ std::string write(const Archive& a, const std::map<std::size_t, std::string>& re
         }
         unzCloseCurrentFile(r.get());
         if (n != 0 || copied != e.info.compressed_size) throw fail(e.name, "its stored bytes are truncated");
-        if (zipCloseFileInZipRaw64(z, e.info.uncompressed_size, e.info.crc) != ZIP_OK) throw fail(e.name, "cannot close it");
+        if (zipCloseFileInZipRaw64(z, e.info.uncompressed_size, e.info.crc) != ZIP_OK)
+            throw fail(e.name, "cannot close it");
     }
     w.z = nullptr;
     if (zipClose(z, global_comment.empty() ? nullptr : global_comment.c_str()) != ZIP_OK)
@@ -394,7 +410,8 @@ std::string md5_hex(std::string_view bytes) {
                                              4, 11, 16, 23, 4, 11, 16, 23, 4, 11, 16, 23, 4, 11, 16, 23,
                                              6, 10, 15, 21, 6, 10, 15, 21, 6, 10, 15, 21, 6, 10, 15, 21};
     std::uint32_t k[64];
-    for (int i = 0; i < 64; ++i) k[i] = static_cast<std::uint32_t>(std::floor(std::fabs(std::sin(i + 1.0)) * 4294967296.0));
+    for (int i = 0; i < 64; ++i)
+        k[i] = static_cast<std::uint32_t>(std::floor(std::fabs(std::sin(i + 1.0)) * 4294967296.0));
     std::uint32_t h[4] = {0x67452301, 0xefcdab89, 0x98badcfe, 0x10325476};
     auto block = [&](const unsigned char* p) {
         std::uint32_t w[16];
@@ -405,10 +422,14 @@ std::string md5_hex(std::string_view bytes) {
         for (int i = 0; i < 64; ++i) {
             std::uint32_t f;
             int g;
-            if (i < 16) f = (b & c) | (~b & d), g = i;
-            else if (i < 32) f = (d & b) | (~d & c), g = (5 * i + 1) % 16;
-            else if (i < 48) f = b ^ c ^ d, g = (3 * i + 5) % 16;
-            else f = c ^ (b | ~d), g = (7 * i) % 16;
+            if (i < 16)
+                f = (b & c) | (~b & d), g = i;
+            else if (i < 32)
+                f = (d & b) | (~d & c), g = (5 * i + 1) % 16;
+            else if (i < 48)
+                f = b ^ c ^ d, g = (3 * i + 5) % 16;
+            else
+                f = c ^ (b | ~d), g = (7 * i) % 16;
             f += a + k[i] + w[g];
             a = d, d = c, c = b;
             b += (f << kS[i]) | (f >> (32 - kS[i]));
@@ -489,8 +510,8 @@ std::string raise_slice_info(std::string_view xml, const PlateChange& change) {
         for (const Tag& t : tags(xml, "metadata", p, e)) {
             std::string_view tag = xml.substr(t.begin, t.end - t.begin);
             std::size_t at = 0, len = 0, vat = 0, vlen = 0;
-            if (attribute(tag, "key", at, len) && tag.substr(at, len) == "index" && attribute(tag, "value", vat, vlen) &&
-                tag.substr(vat, vlen) == std::to_string(change.plate))
+            if (attribute(tag, "key", at, len) && tag.substr(at, len) == "index" &&
+                attribute(tag, "value", vat, vlen) && tag.substr(vat, vlen) == std::to_string(change.plate))
                 from = p, to = e;
         }
         if (to) break;

@@ -83,8 +83,8 @@ std::string md5_hex(std::string_view bytes);
 // What scaffold added to one plate, for Metadata/slice_info.config.
 struct PlateChange {
     int plate = 0;
-    double filament_m = 0;   // metres of filament added
-    double seconds = 0;      // print time added
+    double filament_m = 0;  // metres of filament added
+    double seconds = 0;     // print time added
 };
 
 // slice_info.config with the plate's prediction (seconds), weight (g) and,

@@ -195,7 +195,8 @@ TEST(Archive, ZipBombRefusedWithinItsLimits) {
     }
     // Many members: the total is bounded too.
     std::vector<ZipMember> many;
-    for (int i = 1; i <= 4; ++i) many.push_back({"Metadata/plate_" + std::to_string(i) + ".gcode", std::string(600000, 'G')});
+    for (int i = 1; i <= 4; ++i)
+        many.push_back({"Metadata/plate_" + std::to_string(i) + ".gcode", std::string(600000, 'G')});
     archive::Limits total;
     total.total_bytes = 2000000;
     EXPECT_THROW(archive::read_plates(scaffold::testing::pack(many), "t", total), scaffold::Error);

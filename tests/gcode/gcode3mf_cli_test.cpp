@@ -74,7 +74,8 @@ std::vector<double> expect_plates_as_plain(const std::string& dir, const std::st
             const std::string p = dir + "/plate_" + std::to_string(plate);
             write_file(p + ".gcode", a[i].data);
             EXPECT_EQ(run("scaffold", "-q " + p + ".gcode -o " + p + ".out.gcode"), 0);
-            EXPECT_TRUE(b[i].data == load_file(p + ".out.gcode")) << "the plate differs from the plain G-code path's output";
+            EXPECT_TRUE(b[i].data == load_file(p + ".out.gcode"))
+                << "the plate differs from the plain G-code path's output";
             const RawMember* md5 = member(b, a[i].name + ".md5");
             EXPECT_TRUE(md5 != nullptr);
             if (md5) {
@@ -114,7 +115,8 @@ TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
     EXPECT_EQ(attribute(info, p2, "used_m"), 1.03);
     // Every plate passes the checker, against the input's plate.
     std::string report;
-    EXPECT_EQ(run("scaffold-check", dir + "/out.gcode.3mf --original " + dir + "/in.gcode.3mf > " + dir + "/check.txt"), 0)
+    EXPECT_EQ(run("scaffold-check", dir + "/out.gcode.3mf --original " + dir + "/in.gcode.3mf > " + dir + "/check.txt"),
+              0)
         << load_file(dir + "/check.txt");
     EXPECT_NE(load_file(dir + "/check.txt").find("== Metadata/plate_2.gcode"), std::string::npos);
 
@@ -128,7 +130,8 @@ TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
     ASSERT_EQ(run("scaffold", "-q " + dir + "/sliced.gcode"), 0);
     EXPECT_TRUE(load_file(dir + "/sliced.gcode") == out);
     // Side files: one per plate when there are several.
-    ASSERT_EQ(run("scaffold", "-q " + dir + "/in.gcode.3mf -o " + dir + "/rep.gcode.3mf --report " + dir + "/r.json"), 0);
+    ASSERT_EQ(run("scaffold", "-q " + dir + "/in.gcode.3mf -o " + dir + "/rep.gcode.3mf --report " + dir + "/r.json"),
+              0);
     EXPECT_TRUE(load_file(dir + "/rep.gcode.3mf") == out);
     EXPECT_NE(load_file(dir + "/r.plate_1.json").find("\"points\": "), std::string::npos);
     EXPECT_NE(load_file(dir + "/r.plate_2.json").find("(Metadata/plate_2.gcode)"), std::string::npos);
@@ -138,7 +141,8 @@ TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
     EXPECT_TRUE(load_file(dir + "/none.gcode.3mf") == in);
     // OrcaSlicer's hook names the final .gcode.3mf: the input decides.
     ASSERT_EQ(run("scaffold", "-q " + dir + "/in.gcode.3mf -o " + dir + "/env.gcode.3mf", nullptr,
-                  "SLIC3R_PP_OUTPUT_NAME=" + dir + "/final.gcode.3mf"), 0);
+                  "SLIC3R_PP_OUTPUT_NAME=" + dir + "/final.gcode.3mf"),
+              0);
     EXPECT_TRUE(load_file(dir + "/env.gcode.3mf") == out);
     for (const auto& e : fs::directory_iterator(dir))
         EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
@@ -155,7 +159,8 @@ TEST(Gcode3mfCli, OrcaHookOnTheTemporaryPlainPlate) {
     write_file(dir + "/tmp_plate.gcode", plate);
     ASSERT_EQ(run("scaffold", "-q " + dir + "/plate.gcode -o " + dir + "/plain.gcode"), 0);
     ASSERT_EQ(run("scaffold", "-q " + dir + "/tmp_plate.gcode", nullptr,
-                  "SLIC3R_PP_OUTPUT_NAME=" + dir + "/plate_1.gcode.3mf"), 0);
+                  "SLIC3R_PP_OUTPUT_NAME=" + dir + "/plate_1.gcode.3mf"),
+              0);
     const std::string out = load_file(dir + "/tmp_plate.gcode");
     EXPECT_TRUE(out == load_file(dir + "/plain.gcode"));
     EXPECT_EQ(out.substr(0, out.find('\n')), "; HEADER_BLOCK_START");
@@ -186,7 +191,8 @@ TEST(Gcode3mfCli, BadArchivesOneLineInputUntouched) {
     std::string liar = good;  // plate_1.gcode says it is 1000 bytes in both headers
     for (const char* sig : {"PK\3\4", "PK\1\2"}) {
         std::size_t h = liar.find(sig);
-        const std::size_t name_at = std::string(sig) == "PK\3\4" ? 30 : 46, size_at = std::string(sig) == "PK\3\4" ? 22 : 24;
+        const std::size_t name_at = std::string(sig) == "PK\3\4" ? 30 : 46,
+                          size_at = std::string(sig) == "PK\3\4" ? 22 : 24;
         while (liar.compare(h + name_at, 22, "Metadata/plate_1.gcode") != 0 || liar[h + name_at + 22] == '.')
             h = liar.find(sig, h + 4);
         for (int i = 0; i < 4; ++i) liar[h + size_at + i] = static_cast<char>(1000 >> (8 * i));
@@ -199,7 +205,8 @@ TEST(Gcode3mfCli, BadArchivesOneLineInputUntouched) {
     const std::vector<Case> cases = {
         {"not a zip", binary, "not a zip archive"},
         {"a zip's signature, then junk", std::string("PK\3\4") + std::string(200, '\x7f'), "truncated"},
-        {"no plate", pack({{"3D/3dmodel.model", "<model/>"}, {"Metadata/project_settings.config", "{}"}}), "no Metadata/plate_N.gcode"},
+        {"no plate", pack({{"3D/3dmodel.model", "<model/>"}, {"Metadata/project_settings.config", "{}"}}),
+         "no Metadata/plate_N.gcode"},
         {"truncated", good.substr(0, good.size() * 2 / 3), "truncated"},
         {"dot-dot member", pack(dotdot), "'..' path"},
         {"sizes that lie", liar, "CRC"},
@@ -234,7 +241,8 @@ TEST(Gcode3mfCli, Md5MismatchOnInputWarnsAndGoesOn) {
     EXPECT_NE(err.find("warning"), std::string::npos) << err;
     EXPECT_NE(err.find("plate_1.gcode.md5) does not match"), std::string::npos) << err;
     std::vector<RawMember> out = unpack(load_file(dir + "/out.gcode.3mf"));
-    EXPECT_EQ(member(out, "Metadata/plate_1.gcode.md5")->data, archive::md5_hex(member(out, "Metadata/plate_1.gcode")->data));
+    EXPECT_EQ(member(out, "Metadata/plate_1.gcode.md5")->data,
+              archive::md5_hex(member(out, "Metadata/plate_1.gcode")->data));
 }
 
 // Real Bambu Studio and OrcaSlicer plates (../shared/corpus/wild, third-party
@@ -243,7 +251,8 @@ TEST(Gcode3mfCli, Md5MismatchOnInputWarnsAndGoesOn) {
 TEST(Gcode3mfCli, WildBambuAndOrcaPlates) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
     const fs::path wild = fs::path(SCAFFOLD_SOURCE_DIR) / ".." / "shared" / "corpus" / "wild";
-    if (!fs::exists(wild / "MANIFEST.tsv")) GTEST_SKIP() << "skipped: no " << wild.string() << " (real-world files; CI has them)";
+    if (!fs::exists(wild / "MANIFEST.tsv"))
+        GTEST_SKIP() << "skipped: no " << wild.string() << " (real-world files; CI has them)";
     std::ifstream manifest(wild / "MANIFEST.tsv");
     std::string line;
     int n = 0;
@@ -258,7 +267,9 @@ TEST(Gcode3mfCli, WildBambuAndOrcaPlates) {
         write_file(dir + "/in.gcode.3mf", in);
         ASSERT_EQ(run("scaffold", "-q " + dir + "/in.gcode.3mf -o " + dir + "/out.gcode.3mf"), 0);
         expect_plates_as_plain(dir, in, load_file(dir + "/out.gcode.3mf"));
-        EXPECT_EQ(run("scaffold-check", dir + "/out.gcode.3mf --original " + dir + "/in.gcode.3mf > " + dir + "/check.txt"), 0)
+        EXPECT_EQ(
+            run("scaffold-check", dir + "/out.gcode.3mf --original " + dir + "/in.gcode.3mf > " + dir + "/check.txt"),
+            0)
             << load_file(dir + "/check.txt");
         ASSERT_EQ(run("scaffold", "-q --method none " + dir + "/in.gcode.3mf -o " + dir + "/none.gcode.3mf"), 0);
         EXPECT_TRUE(load_file(dir + "/none.gcode.3mf") == in);

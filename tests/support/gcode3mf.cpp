@@ -68,8 +68,11 @@ std::string bambu_gcode(const BambuPlate& p) {
     }
     const double mm = b.total_e, cm3 = mm * std::numbers::pi * 0.875 * 0.875 / 1000, g = cm3 * 1.26;
     std::string out = "; HEADER_BLOCK_START\n; BambuStudio 01.09.00.70\n";
-    out += "; model printing time: 7m 30s; total estimated time: 9m 12s\n; total layer number: " + std::to_string(layers) + "\n";
-    out += "; total filament length [mm] : " + f("%.2f", mm) + "\n; total filament volume [cm^3] : " + f("%.2f", cm3 * 1000) + "\n";
+    out +=
+        "; model printing time: 7m 30s; total estimated time: 9m 12s\n; total layer number: " + std::to_string(layers) +
+        "\n";
+    out += "; total filament length [mm] : " + f("%.2f", mm) +
+           "\n; total filament volume [cm^3] : " + f("%.2f", cm3 * 1000) + "\n";
     out += "; total filament weight [g] : " + f("%.2f", g) + "\n; filament_density: 1.26\n; filament_diameter: 1.75\n";
     out += "; max_z_height: 8.00\n; HEADER_BLOCK_END\n\n; EXECUTABLE_BLOCK_START\n";
     out += "M73 P0 R9\nM201 X20000 Y20000 Z500 E5000\nM1002 gcode_claim_action : 2\nM140 S55\nM104 S220\nG28\n";
@@ -78,7 +81,8 @@ std::string bambu_gcode(const BambuPlate& p) {
     out += "M73 P100 R0\nM104 S0\nM140 S0\nG1 Z12 F600\n; EXECUTABLE_BLOCK_END\n";
     out += "; filament used [mm] = " + f("%.2f", mm) + "\n; filament used [cm3] = " + f("%.2f", cm3) + "\n";
     out += "; filament used [g] = " + f("%.2f", g) + "\n; filament cost = " + f("%.2f", g / 1000 * 24.99) + "\n";
-    out += "; total filament used [g] = " + f("%.2f", g) + "\n; total filament cost = " + f("%.2f", g / 1000 * 24.99) + "\n";
+    out += "; total filament used [g] = " + f("%.2f", g) + "\n; total filament cost = " + f("%.2f", g / 1000 * 24.99) +
+           "\n";
     out += "; total layers count = " + std::to_string(layers) + "\n\n; CONFIG_BLOCK_START\n";
     out += "; layer_height = 0.2\n; initial_layer_print_height = 0.2\n; nozzle_diameter = 0.4\n";
     out += "; filament_diameter = 1.75\n; filament_density = 1.26\n; filament_cost = 24.99\n";
@@ -89,16 +93,19 @@ std::string bambu_gcode(const BambuPlate& p) {
 }
 
 std::string bambu_slice_info(const std::vector<std::string>& plates) {
-    std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<config>\n  <header>\n"
-                    "    <header_item key=\"X-BBL-Client-Type\" value=\"slicer\"/>\n"
-                    "    <header_item key=\"X-BBL-Client-Version\" value=\"01.09.00.70\"/>\n  </header>\n";
+    std::string x =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<config>\n  <header>\n"
+        "    <header_item key=\"X-BBL-Client-Type\" value=\"slicer\"/>\n"
+        "    <header_item key=\"X-BBL-Client-Version\" value=\"01.09.00.70\"/>\n  </header>\n";
     for (std::size_t i = 0; i < plates.size(); ++i) {
         x += "  <plate>\n    <metadata key=\"index\" value=\"" + std::to_string(i + 1) + "\"/>\n";
-        x += "    <metadata key=\"printer_model_id\" value=\"C12\"/>\n    <metadata key=\"nozzle_diameters\" value=\"0.4\"/>\n";
+        x += "    <metadata key=\"printer_model_id\" value=\"C12\"/>\n    <metadata key=\"nozzle_diameters\" "
+             "value=\"0.4\"/>\n";
         x += "    <metadata key=\"prediction\" value=\"552\"/>\n    <metadata key=\"weight\" value=\"3.10\"/>\n";
         x += "    <metadata key=\"outside\" value=\"false\"/>\n    <metadata key=\"support_used\" value=\"false\"/>\n";
         x += "    <object identify_id=\"" + std::to_string(100 + i) + "\" name=\"block.stl\" skipped=\"false\" />\n";
-        x += "    <filament id=\"1\" tray_info_idx=\"GFA00\" type=\"PLA\" color=\"#FFFFFF\" used_m=\"1.03\" used_g=\"3.10\" />\n";
+        x += "    <filament id=\"1\" tray_info_idx=\"GFA00\" type=\"PLA\" color=\"#FFFFFF\" used_m=\"1.03\" "
+             "used_g=\"3.10\" />\n";
         x += "  </plate>\n";
     }
     return x + "</config>\n";
@@ -108,12 +115,13 @@ std::vector<ZipMember> bambu_members(const std::vector<std::string>& plates) {
     std::vector<ZipMember> m;
     std::string png = "\x89PNG\r\n\x1a\n";
     png += std::string(600, '\x11');
-    m.push_back({"[Content_Types].xml",
-                 "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/"
-                 "content-types\">\n <Default Extension=\"rels\" ContentType=\"application/"
-                 "vnd.openxmlformats-package.relationships+xml\"/>\n <Default Extension=\"model\" "
-                 "ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>\n <Default Extension=\"png\" "
-                 "ContentType=\"image/png\"/>\n <Default Extension=\"gcode\" ContentType=\"text/x.gcode\"/>\n</Types>\n"});
+    m.push_back(
+        {"[Content_Types].xml",
+         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/"
+         "content-types\">\n <Default Extension=\"rels\" ContentType=\"application/"
+         "vnd.openxmlformats-package.relationships+xml\"/>\n <Default Extension=\"model\" "
+         "ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>\n <Default Extension=\"png\" "
+         "ContentType=\"image/png\"/>\n <Default Extension=\"gcode\" ContentType=\"text/x.gcode\"/>\n</Types>\n"});
     m.push_back({"_rels/.rels", "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<Relationships/>\n"});
     m.push_back({"3D/3dmodel.model", "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<model unit=\"millimeter\"/>\n"});
     for (std::size_t i = 0; i < plates.size(); ++i) {
@@ -128,11 +136,13 @@ std::vector<ZipMember> bambu_members(const std::vector<std::string>& plates) {
     m.push_back({"Metadata/_rels/model_settings.config.rels", "<?xml version=\"1.0\"?>\n<Relationships/>\n"});
     for (std::size_t i = 0; i < plates.size(); ++i) {
         std::string n = std::to_string(i + 1);
-        m.push_back({"Metadata/plate_" + n + ".json", "{\"bbox_objects\":[{\"id\":" + n + ",\"name\":\"block.stl\"}],\"version\":2}"});
+        m.push_back({"Metadata/plate_" + n + ".json",
+                     "{\"bbox_objects\":[{\"id\":" + n + ",\"name\":\"block.stl\"}],\"version\":2}"});
         m.push_back({"Metadata/pick_" + n + ".png", png, 0});
         m.push_back({"Metadata/top_" + n + ".png", png, 0});
     }
-    m.push_back({"Metadata/project_settings.config", "{\n    \"layer_height\": \"0.2\",\n    \"spiral_mode\": \"0\"\n}\n"});
+    m.push_back(
+        {"Metadata/project_settings.config", "{\n    \"layer_height\": \"0.2\",\n    \"spiral_mode\": \"0\"\n}\n"});
     m.push_back({"Metadata/slice_info.config", bambu_slice_info(plates)});
     return m;
 }
@@ -170,15 +180,21 @@ std::vector<RawMember> unpack(const std::string& zip) {
         unz_file_info64 info{};
         char name[1024];
         ok = unzGetCurrentFileInfo64(u, &info, name, sizeof name, nullptr, 0, nullptr, 0) == UNZ_OK;
-        RawMember m{name, static_cast<int>(info.compression_method), static_cast<std::uint32_t>(info.crc),
-                    static_cast<std::uint32_t>(info.dosDate), static_cast<std::uint32_t>(info.external_fa), {}, {}};
+        RawMember m{name,
+                    static_cast<int>(info.compression_method),
+                    static_cast<std::uint32_t>(info.crc),
+                    static_cast<std::uint32_t>(info.dosDate),
+                    static_cast<std::uint32_t>(info.external_fa),
+                    {},
+                    {}};
         for (int raw : {1, 0}) {
             int method = 0, level = 0;
             ok = ok && unzOpenCurrentFile2(u, &method, &level, raw) == UNZ_OK;
             std::string& into = raw ? m.raw : m.data;
             char buf[65536];
             int n = 0;
-            while (ok && (n = unzReadCurrentFile(u, buf, sizeof buf)) > 0) into.append(buf, static_cast<std::size_t>(n));
+            while (ok && (n = unzReadCurrentFile(u, buf, sizeof buf)) > 0)
+                into.append(buf, static_cast<std::size_t>(n));
             ok = ok && n == 0 && unzCloseCurrentFile(u) == UNZ_OK;
         }
         out.push_back(std::move(m));

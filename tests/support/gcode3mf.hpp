@@ -21,8 +21,8 @@ std::string bambu_gcode(const BambuPlate& plate);
 
 struct ZipMember {
     std::string name, data;
-    int method = 8;            // 0 stored, 8 deflate
-    std::uint64_t zeros = 0;   // then this many zero bytes (a zip bomb without holding it)
+    int method = 8;           // 0 stored, 8 deflate
+    std::uint64_t zeros = 0;  // then this many zero bytes (a zip bomb without holding it)
 };
 
 // The members of a sliced plate file for these plates' G-code: 3MF parts,
