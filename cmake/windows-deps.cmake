@@ -3,6 +3,11 @@
 # - Boost.Program_options: its compiled part built here as a static library
 #   from Debian's own source package, unpacked by tools/release into
 #   SCAFFOLD_BOOST_SOURCE_DIR (`apt-get source boost1.74`);
+# - minizip (zlib's contrib, for .gcode.3mf): its three sources built here
+#   as a static library from Debian's own source package (with Debian's
+#   security patches), unpacked by tools/release into
+#   SCAFFOLD_MINIZIP_SOURCE_DIR (`apt-get source minizip`), over the MinGW
+#   zlib (libz-mingw-w64-dev);
 # - Boost's other headers, spdlog and fmt: Debian's headers in /usr/include,
 #   header-only. They are reached through links in the build tree, so that
 #   /usr/include itself (glibc's headers) never enters the search path.
@@ -43,3 +48,22 @@ target_compile_definitions(spdlog::spdlog INTERFACE SPDLOG_FMT_EXTERNAL FMT_HEAD
 # Both programs carry cmake/windows.manifest: UTF-8 as their code page.
 enable_language(RC)
 set(SCAFFOLD_WINDOWS_RESOURCES "${CMAKE_CURRENT_LIST_DIR}/windows-manifest.rc")
+
+# minizip from Debian's source package, reached as <minizip/unzip.h> like
+# libminizip-dev's headers on Linux.
+set(SCAFFOLD_MINIZIP_SOURCE_DIR "" CACHE PATH "Debian's minizip source tree (tools/release fetches it)")
+if(NOT EXISTS "${SCAFFOLD_MINIZIP_SOURCE_DIR}/unzip.c")
+  message(FATAL_ERROR "SCAFFOLD_MINIZIP_SOURCE_DIR='${SCAFFOLD_MINIZIP_SOURCE_DIR}' is not a minizip source tree; "
+                      "tools/release fetches one (apt-get source minizip)")
+endif()
+enable_language(C)
+find_package(ZLIB REQUIRED)
+set(minizip_include "${CMAKE_BINARY_DIR}/minizip-include")
+file(MAKE_DIRECTORY "${minizip_include}")
+file(CREATE_LINK "${SCAFFOLD_MINIZIP_SOURCE_DIR}" "${minizip_include}/minizip" SYMBOLIC)
+add_library(minizip STATIC "${SCAFFOLD_MINIZIP_SOURCE_DIR}/ioapi.c" "${SCAFFOLD_MINIZIP_SOURCE_DIR}/unzip.c"
+  "${SCAFFOLD_MINIZIP_SOURCE_DIR}/zip.c")
+target_include_directories(minizip SYSTEM PUBLIC "${minizip_include}")
+target_link_libraries(minizip PUBLIC ZLIB::ZLIB)
+target_compile_options(minizip PRIVATE -w)  # not our code
+add_library(minizip::minizip ALIAS minizip)

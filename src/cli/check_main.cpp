@@ -6,12 +6,37 @@
 #endif
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "check/printability.hpp"
+#include "gcode/archive.hpp"
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 
 namespace po = boost::program_options;
+
+namespace {
+
+// A plain or binary G-code file is one program; a .gcode.3mf (a zip, by
+// content) one per plate, each named by its member.
+std::vector<std::pair<std::string, scaffold::gcode::Program>> load(const std::string& path) {
+    using namespace scaffold::gcode;
+    Text bytes = Text::load(path);
+    const std::string name = path == "-" ? "<stdin>" : path;
+    std::vector<std::pair<std::string, Program>> out;
+    if (!archive::is_zip(bytes)) {
+        archive::refuse_binary_3mf(path, bytes);
+        out.emplace_back("", parse(std::move(bytes), name));
+        return out;
+    }
+    for (auto& [member, text] : archive::read_plates(bytes, name))
+        out.emplace_back(member, parse(std::move(text), name + " (" + member + ")"));
+    return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
 #ifdef _WIN32
@@ -27,7 +52,9 @@ int main(int argc, char** argv) {
         "estimate. It reads only G-code:\n"
         "support is what is typed as support (;TYPE:Support material, Cura SUPPORT,\n"
         "Slic3r '; support material') or, with --original, what the original lacks.\n"
-        "FILE and --original may be plain or binary G-code (.bgcode, recognised by content).\n\n"
+        "FILE and --original may be plain or binary G-code (.bgcode, recognised by content),\n"
+        "or a Bambu Studio / OrcaSlicer .gcode.3mf: each plate is checked, against the\n"
+        "original's plate of the same name.\n\n"
         "Exit status: 0 printable, 1 not printable (reasons listed), 2 bad input or usage.\n\nOptions");
     opts.add_options()
         ("help,h", "show this help and exit")
@@ -76,15 +103,34 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        auto out = scaffold::gcode::read_file(vm["file"].as<std::string>());
-        scaffold::gcode::Program original;
+        auto outs = load(vm["file"].as<std::string>());
         bool have_original = vm.count("original") > 0;
-        if (have_original) original = scaffold::gcode::read_file(vm["original"].as<std::string>());
-        auto report = scaffold::check::check(out, have_original ? &original : nullptr, o,
-                                             vm.count("svg") ? vm["svg"].as<std::string>() : std::string());
-        if (!vm.count("quiet"))
-            std::cout << (vm.count("json") ? scaffold::check::report_json(report) : scaffold::check::report_text(report));
-        return report.ok() ? 0 : 1;
+        decltype(outs) originals;
+        if (have_original) originals = load(vm["original"].as<std::string>());
+        const bool plates = !outs.front().first.empty();
+        bool ok = true;
+        std::string json;
+        for (const auto& [member, out] : outs) {
+            const scaffold::gcode::Program* original = nullptr;
+            for (const auto& [name, program] : originals)
+                if (name == member || originals.size() == 1) original = &program;
+            if (have_original && !original)
+                throw scaffold::Error(vm["original"].as<std::string>(), 0, "has no plate " + member);
+            std::string svg = vm.count("svg") ? vm["svg"].as<std::string>() : std::string();
+            if (!svg.empty() && outs.size() > 1) svg += "/plate_" + std::to_string(scaffold::gcode::archive::plate_number(member));
+            auto report = scaffold::check::check(out, original, o, svg);
+            ok = ok && report.ok();
+            if (vm.count("quiet")) continue;
+            if (vm.count("json") && plates)
+                json += (json.empty() ? "{\"plates\": [\n" : ",\n") + std::string("{\"member\": \"") + member +
+                        "\", \"report\": " + scaffold::check::report_json(report) + "}";
+            else if (vm.count("json"))
+                std::cout << scaffold::check::report_json(report);
+            else
+                std::cout << (plates ? "== " + member + "\n" : std::string()) << scaffold::check::report_text(report);
+        }
+        if (!json.empty()) std::cout << json << "]}\n";
+        return ok ? 0 : 1;
     } catch (const scaffold::Error& e) {
         std::cerr << "scaffold-check: " << e.what() << "\n";
         return 2;

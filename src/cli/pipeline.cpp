@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "check/printability.hpp"
+#include "cli/gcode3mf.hpp"
+#include "gcode/archive.hpp"
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
@@ -118,10 +120,18 @@ gcode::OutputFormat output_format(const std::string& name) {
 
 }  // namespace
 
-void run(const Request& req, spdlog::logger& log) {
+Outcome run(const Request& req, spdlog::logger& log) {
     const gcode::OutputFormat format = output_format(req.output_format);
     Timings time;
-    gcode::Program program = gcode::read_file(req.input);
+    gcode::Program program;
+    if (req.input_text) {
+        program = gcode::parse(std::move(*req.input_text), req.input);
+    } else {
+        gcode::Text bytes = gcode::Text::load(req.input);
+        if (gcode::archive::is_zip(bytes)) return run_gcode_3mf(req, bytes, log);
+        gcode::archive::refuse_binary_3mf(req.input, bytes);
+        program = gcode::parse(std::move(bytes), req.input == "-" ? "<stdin>" : req.input);
+    }
     time.lap("read");
     SettingMap cli = req.slicer_overrides;
     for (const auto& [k, v] : req.overrides) cli[k] = v;
@@ -130,9 +140,12 @@ void run(const Request& req, spdlog::logger& log) {
     log.debug("{}: {} lines, {} moves, dialect {}", program.path, program.lines.size(), program.moves.size(),
               gcode::dialect_name(program.dialect));
     if (settings.method == Method::None) {
-        gcode::write_output(req.output, program, {}, format);
+        if (req.output_text) *req.output_text = gcode::render_edited(program, {});
+        else gcode::write_output(req.output, program, {}, format);
         log.info("--method none: written unchanged");
-        return;
+        Outcome none;
+        none.unchanged = true;
+        return none;
     }
     // A vase is recognised by its setting or, where the file has none (Cura
     // hands scripts no settings), by Z rising through its extrusions.
@@ -159,7 +172,7 @@ void run(const Request& req, spdlog::logger& log) {
                  own_support_mm);
     // Print-time change, by the validator's estimate; the written file is
     // read back for it, so only when that is cheap.
-    bool estimate_time = req.output != "-" && program.text.size() < 50'000'000;
+    bool estimate_time = (req.output_text || req.output != "-") && program.text.size() < 50'000'000;
     double time_before = estimate_time ? check::estimate_print_time(program) : 0;
     // Nothing below reads the moves (the splice re-lexes the lines): free
     // them, the largest part of a big file's memory.
@@ -231,13 +244,17 @@ void run(const Request& req, spdlog::logger& log) {
     std::vector<gcode::Edit> edits = std::move(spliced.edits);
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
     update_totals(program, spliced.filament_mm, settings.spool_diameter, edits);
-    gcode::write_output(req.output, program, std::move(edits), format);
+    if (req.output_text) *req.output_text = gcode::render_edited(program, std::move(edits));
+    else gcode::write_output(req.output, program, std::move(edits), format);
     time.lap("write");
 
     std::string time_change;
+    Outcome outcome{spliced.filament_mm, time_before, time_before};
     if (estimate_time) {
         double before = time_before;
-        double after = check::estimate_print_time(gcode::read_file(req.output));
+        double after = check::estimate_print_time(req.output_text ? gcode::parse(*req.output_text, program.path)
+                                                                  : gcode::read_file(req.output));
+        outcome.seconds_after = after;
         time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
                                   before > 0 ? 100 * (after - before) / before : 0.0);
     }
@@ -287,6 +304,7 @@ void run(const Request& req, spdlog::logger& log) {
         j += "}\n}\n";
         gcode::write_text_file(it->second, j);
     }
+    return outcome;
 }
 
 }  // namespace scaffold::cli

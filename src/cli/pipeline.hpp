@@ -18,9 +18,22 @@ struct Request {
     SettingMap overrides;                      // scaffold options by option name
     SettingMap slicer_overrides;               // --set KEY=VALUE
     std::string output_format;                 // "ascii", "binary" or empty: as the input
+    // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
+    // from here instead of reading `input`, and the output kept here instead
+    // of written.
+    std::string* input_text = nullptr;
+    std::string* output_text = nullptr;
+};
+
+// What a run added: a .gcode.3mf's slice_info.config is raised by it.
+struct Outcome {
+    double support_mm = 0;  // of the spool's filament
+    double seconds_before = 0, seconds_after = 0;  // the validator's print time estimate; 0 when not made
+    bool unchanged = false;                        // --method none: the input as it was
 };
 
 // Throws scaffold::Error; on error nothing has been written to the output.
-void run(const Request& request, spdlog::logger& log);
+// A .gcode.3mf input (recognised by content) is run plate by plate.
+Outcome run(const Request& request, spdlog::logger& log);
 
 }  // namespace scaffold::cli

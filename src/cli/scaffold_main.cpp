@@ -44,7 +44,9 @@ int main(int argc, char** argv) {
         "case); '-' reads standard input. Slicer settings are read from the file's own\n"
         "config block, then SLIC3R_* environment variables, then the options below.\n"
         "Binary G-code (PrusaSlicer .bgcode) is recognised by its content and written\n"
-        "back as binary G-code unless --output-format says otherwise.\n\nGeneral");
+        "back as binary G-code unless --output-format says otherwise. A Bambu Studio /\n"
+        "OrcaSlicer .gcode.3mf (a zip with Metadata/plate_N.gcode) is too: every plate\n"
+        "gets supports, its .md5 and slice_info.config follow, the rest is kept.\n\nGeneral");
     general.add_options()
         ("help,h", "show this help and exit")
         ("version", "print the version and exit")

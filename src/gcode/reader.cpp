@@ -266,6 +266,8 @@ Program parse_text(Text text, std::string path, bool relative_e = false) {
 
 Program parse(std::string text, std::string path) { return parse_text(Text(std::move(text)), std::move(path)); }
 
+Program parse(Text text, std::string path) { return parse_text(std::move(text), std::move(path)); }
+
 Program read_file(const std::string& path) {
     return parse_text(Text::load(path), path == "-" ? "<stdin>" : path);
 }

@@ -11,5 +11,7 @@ namespace scaffold::gcode {
 Program read_file(const std::string& path);
 // Parses G-code already in memory; `path` is used in messages.
 Program parse(std::string text, std::string path);
+// The same over bytes already loaded (a map is not copied).
+Program parse(Text text, std::string path);
 
 }  // namespace scaffold::gcode

@@ -158,9 +158,12 @@ std::optional<std::string> binary_output(const Program& p, std::vector<Edit>& ed
 
 }  // namespace
 
-void write_output(const std::string& path, const Program& program, std::vector<Edit> edits, OutputFormat format) {
-    std::optional<std::string> binary = binary_output(program, edits, format);
-    auto emit = [&](std::FILE* out) { return binary ? put(out, *binary) : write_edited(out, program, std::move(edits)); };
+namespace {
+
+// Writes what `emit` puts out to `path` ("-": stdout) through a temporary
+// file beside it, renamed over it once complete.
+template <class Emit>
+void write_atomically(const std::string& path, Emit emit) {
     if (path == "-") {
 #ifdef _WIN32
         (void)::_setmode(::_fileno(stdout), _O_BINARY);  // no '\n' -> CRLF translation
@@ -198,6 +201,19 @@ void write_output(const std::string& path, const Program& program, std::vector<E
         std::remove(tmp.c_str());
         throw Error(path, 0, "cannot replace the output file: " + why);
     }
+}
+
+}  // namespace
+
+void write_output(const std::string& path, const Program& program, std::vector<Edit> edits, OutputFormat format) {
+    std::optional<std::string> binary = binary_output(program, edits, format);
+    write_atomically(path, [&](std::FILE* out) {
+        return binary ? put(out, *binary) : write_edited(out, program, std::move(edits));
+    });
+}
+
+void write_bytes(const std::string& path, std::string_view bytes) {
+    write_atomically(path, [&](std::FILE* out) { return put(out, bytes); });
 }
 
 void write_text_file(const std::string& path, const std::string& text) {

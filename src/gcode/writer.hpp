@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gcode/program.hpp"
@@ -33,6 +34,9 @@ enum class OutputFormat : std::uint8_t { SameAsInput, Ascii, Binary };
 // Binary G-code keeps a binary input's settings; unchanged, its bytes.
 void write_output(const std::string& path, const Program& program, std::vector<Edit> edits,
                   OutputFormat format = OutputFormat::SameAsInput);
+
+// Bytes made in memory (a .gcode.3mf archive), written like write_output.
+void write_bytes(const std::string& path, std::string_view bytes);
 
 // A side file (report, picture, dump): written directly, not atomically.
 // Throws scaffold::Error if it cannot be written.

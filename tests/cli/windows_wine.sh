@@ -107,6 +107,41 @@ cmp -s "$tmp/lin.gcode" "$tmp/drive/Drucke äöü/日本 modèle.gcode" || bad "
 cmp -s "$tmp/check.lin" "$tmp/check.win" || { bad "scaffold-check report differs:"; diff "$tmp/check.lin" "$tmp/check.win" | head; }
 grep -q '^exit 0$' "$tmp/check.lin" || bad "scaffold-check: the Linux output did not pass: $(cat "$tmp/check.lin")"
 
+# Bambu Studio's .gcode.3mf: the project's two seed plate files and one
+# packed here (Python's zipfile) from the overhang corpus file, so support is
+# added: in place on drive S: and through stdin/stdout, the Linux bytes;
+# scaffold-check.exe passes every plate; a truncated one is refused, untouched.
+archives=("$src"/tests/data/gcode3mf/*.gcode.3mf)
+if command -v python3 >/dev/null; then
+  python3 - "$tmp/in.gcode" "$tmp/overhang.gcode.3mf" <<'PY'
+import hashlib, sys, zipfile
+g = open(sys.argv[1], 'rb').read()
+with zipfile.ZipFile(sys.argv[2], 'w', zipfile.ZIP_DEFLATED) as z:
+    z.writestr('[Content_Types].xml', '<Types/>')
+    z.writestr('Metadata/plate_1.gcode', g)
+    z.writestr('Metadata/plate_1.gcode.md5', hashlib.md5(g).hexdigest().upper())
+PY
+  archives+=("$tmp/overhang.gcode.3mf")
+fi
+for f in "${archives[@]}"; do
+  name="$(basename "$f")"
+  lin "$f" -o "$tmp/lin.3mf"
+  cp "$f" "$tmp/drive/sub dir/$name"
+  win "S:\\sub dir\\$name" 2>"$tmp/err" || bad "$name: in place: exit $?: $(cat "$tmp/err")"
+  cmp -s "$tmp/lin.3mf" "$tmp/drive/sub dir/$name" || bad "$name: in place: differs from Linux"
+  win - < "$f" > "$tmp/win.3mf" || bad "$name: stdin/stdout: exit $?"
+  cmp -s "$tmp/lin.3mf" "$tmp/win.3mf" || bad "$name: stdin/stdout: differs from Linux"
+  "$wine" "$winbuild/scaffold-check.exe" "S:\\sub dir\\$name" --original "$(winpath "$f")" > "$tmp/check.win" ||
+    bad "$name: scaffold-check.exe: $(cat "$tmp/check.win")"
+  rm -f "$tmp/drive/sub dir/$name"
+done
+head -c 1000 "${archives[0]}" > "$tmp/drive/sub dir/cut.gcode.3mf"
+cp "$tmp/drive/sub dir/cut.gcode.3mf" "$tmp/cut.gcode.3mf"
+if win 'S:\sub dir\cut.gcode.3mf' 2>"$tmp/err"; then bad "truncated .gcode.3mf: exit 0"; fi
+grep -q "truncated" "$tmp/err" || bad "truncated .gcode.3mf: message: $(cat "$tmp/err")"
+cmp -s "$tmp/cut.gcode.3mf" "$tmp/drive/sub dir/cut.gcode.3mf" || bad "truncated .gcode.3mf: file changed"
+rm -f "$tmp/drive/sub dir/cut.gcode.3mf"
+
 # Errors: a failed write leaves the file and no temporary file; a missing
 # file gives the same message as on Linux.
 cp "$tmp/in.gcode" "$tmp/drive/sub dir/keep.gcode"
@@ -119,4 +154,4 @@ win 'S:\sub dir\nope.gcode' 2>"$tmp/err"; rc=$?
 grep -q 'cannot open for reading: No such file or directory' "$tmp/err" || bad "missing file: message: $(cat "$tmp/err")"
 
 [ "$fail" -eq 0 ] || exit 1
-echo "Windows build under Wine: $n corpus files x 2 methods, $crlf CRLF files, drive S:, non-ASCII name, environment, --help, scaffold-check: identical to Linux"
+echo "Windows build under Wine: $n corpus files x 2 methods, $crlf CRLF files, drive S:, non-ASCII name, environment, ${#archives[@]} .gcode.3mf, --help, scaffold-check: identical to Linux"
