@@ -22,6 +22,7 @@ for f in "$tarball" "$benchy" "$vase"; do
 done
 "$src/tools/deps" python3-pil >/dev/null   # what metadata.py needs, from Debian
 py=/usr/bin/python3
+export PYTHONDONTWRITEBYTECODE=1  # nothing written into the source tree
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 tar -xzf "$tarball" -C "$tmp"
 metadata="$tmp/moonraker/moonraker/components/file_manager/metadata.py"

@@ -10,6 +10,7 @@
 set -euo pipefail
 build="$1"; src="$2"
 py=/usr/bin/python3; [ -x "$py" ] || py=python3
+export PYTHONDONTWRITEBYTECODE=1  # nothing written into the source tree
 plugin="$src/integrations/octoprint"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 fail=0
