@@ -20,7 +20,7 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
 # The same output bytes as the x86-64 build: no fused multiply-add where
 # the source has a multiply and an add (GCC fuses them by default on ARM;
 # x86-64 without -march has no FMA to fuse into).
-set(CMAKE_CXX_FLAGS_INIT "-ffp-contract=off")
+set(CMAKE_CXX_FLAGS_INIT "-ffp-contract=off ${SCAFFOLD_CROSS_FLAGS}")
 set(CMAKE_C_FLAGS_INIT "-ffp-contract=off")
 # One file that runs on any distribution (Raspberry Pi OS 32 or 64 bit,
 # whatever its glibc): everything linked in. Stripped by the linker.
