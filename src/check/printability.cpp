@@ -35,9 +35,16 @@ bool comment_only(std::string_view t) {
     return i == std::string_view::npos || t[i] == ';';
 }
 
+// Lines the edit may rewrite: comments (slicers' filament and time totals)
+// and M73 progress (raised by the support's time); neither moves anything.
+bool may_change(std::string_view t) {
+    std::size_t i = t.find_first_not_of(" \t\r");
+    return comment_only(t) || t.substr(i, 4) == "M73 ";
+}
+
 // The in-order match of `original` in `out`: every command line of the
-// original must appear, unchanged and in order (comment-only lines may
-// change: slicers' filament totals are updated). Lines of `out` left over
+// original must appear, unchanged and in order (comment-only lines and M73
+// may change, see may_change). Lines of `out` left over
 // were inserted (the support). A greedy scan finds a subsequence whenever
 // one exists; a missing line is skipped and the scan goes on from the last
 // match, up to kMaxMissing misses.
@@ -55,11 +62,11 @@ LineMatch match_lines(const gcode::Program& out, const gcode::Program& original)
     m.inserted.assign(out.lines.size(), true);
     m.out_line.assign(original.lines.size(), kNone);
     for (std::size_t i = 0; i < out.lines.size(); ++i)
-        if (comment_only(out.line_text(i))) m.inserted[i] = false;  // comments carry no material
+        if (may_change(out.line_text(i))) m.inserted[i] = false;  // comments and M73 carry no material
     std::size_t from = 0;
     for (std::size_t k = 0; k < original.lines.size(); ++k) {
         std::string_view want = original.line_text(k);
-        if (comment_only(want)) continue;
+        if (may_change(want)) continue;
         if (m.missing > kMaxMissing) { ++m.missing; continue; }
         std::size_t i = from;
         while (i < out.lines.size() && (!m.inserted[i] || out.line_text(i) != want)) ++i;

@@ -10,6 +10,7 @@
 #include "check/printability.hpp"
 #include "cli/gcode3mf.hpp"
 #include "gcode/archive.hpp"
+#include "gcode/bgcode.hpp"
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
@@ -21,6 +22,7 @@
 #include "plan/pillars.hpp"
 #include "plan/planner.hpp"
 #include "splice/splice.hpp"
+#include "splice/times.hpp"
 #include "toolpath/preview.hpp"
 #include "toolpath/bar_check.hpp"
 #include "toolpath/support_paths.hpp"
@@ -111,6 +113,21 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
     p.text.release(0, p.text.size());  // the scan touched every page; the writer reads them back piece by piece
 }
 
+// The version in scaffold's header line if the file already carries one
+// (it goes after the slicer's first line; in binary G-code, at the top of
+// the G-code blocks), else empty. A second run must not add support twice.
+std::string processed_by(const gcode::Program& p) {
+    const std::size_t first = p.binary ? p.binary->gcode_line : 0;
+    constexpr std::string_view kHead = "; scaffold ";
+    for (std::size_t i = first; i < p.lines.size() && i < first + 20; ++i) {
+        const std::string_view t = p.line_text(i);
+        if (t.rfind(kHead, 0) != 0 || t.find(" (post-processed supports)") == std::string_view::npos) continue;
+        const std::string_view rest = t.substr(kHead.size());
+        return std::string(rest.substr(0, rest.find(' ')));
+    }
+    return {};
+}
+
 gcode::OutputFormat output_format(const std::string& name) {
     if (name.empty()) return gcode::OutputFormat::SameAsInput;
     if (name == "ascii") return gcode::OutputFormat::Ascii;
@@ -133,6 +150,16 @@ Outcome run(const Request& req, spdlog::logger& log) {
         program = gcode::parse(std::move(bytes), req.input == "-" ? "<stdin>" : req.input);
     }
     time.lap("read");
+    if (const std::string version = processed_by(program); !version.empty()) {
+        // In place: not even rewritten (the bytes and the time stamp stay).
+        if (req.output_text) *req.output_text = gcode::render_edited(program, {});
+        else if (req.output != req.input || req.input == "-" || format != gcode::OutputFormat::SameAsInput)
+            gcode::write_output(req.output, program, {}, format);
+        log.info("{} was already processed by scaffold {} (its header line): left unchanged", program.path, version);
+        Outcome same;
+        same.unchanged = true;
+        return same;
+    }
     SettingMap cli = req.slicer_overrides;
     for (const auto& [k, v] : req.overrides) cli[k] = v;
     const Settings settings = build_settings(program, settings_from_environment(), cli);
@@ -241,8 +268,13 @@ Outcome run(const Request& req, spdlog::logger& log) {
     const double e_area = std::numbers::pi * settings.filament_diameter * settings.filament_diameter / 4;
     spliced.filament_mm *= e_area / (std::numbers::pi * settings.spool_diameter * settings.spool_diameter / 4);
     header += "; scaffold: support filament used [mm] = " + fixed(spliced.filament_mm, 2) + "\n";
+    header += "; scaffold: support print time = " + splice::format_dhms(spliced.seconds) + "\n";
+    std::vector<splice::BlockTime> block_times;
+    for (std::size_t i = 0; i < spliced.edits.size(); ++i)
+        block_times.push_back({spliced.edits[i].line, spliced.block_seconds[i]});
     std::vector<gcode::Edit> edits = std::move(spliced.edits);
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
+    splice::update_times(program, std::move(block_times), edits);
     update_totals(program, spliced.filament_mm, settings.spool_diameter, edits);
     if (req.output_text) *req.output_text = gcode::render_edited(program, std::move(edits));
     else gcode::write_output(req.output, program, std::move(edits), format);

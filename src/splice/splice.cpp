@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 
 #include "gcode/blocks.hpp"
@@ -39,15 +40,36 @@ const char* support_type(gcode::Dialect d) {
     }
 }
 
+// The acceleration the slicer planned extrusions with (PrusaSlicer's and
+// its forks' config keys, the first of a "normal,silent" pair), else
+// Marlin's common 1000 mm/s^2, as the checker's estimate assumes.
+double planned_acceleration(const gcode::Program& p) {
+    for (const char* key : {"default_acceleration", "machine_max_acceleration_extruding", "default_acceleration_print"}) {
+        auto it = p.config.find(key);
+        if (it == p.config.end()) continue;
+        double a = std::strtod(it->second.c_str(), nullptr);
+        if (a > 0) return a;
+    }
+    return 1000;
+}
+
+// Seconds for one straight move from rest to rest: a trapezoid, or a
+// triangle when it is too short to reach its speed. Support paths turn
+// often, so "from rest" is near what a printer's planner does.
+double move_seconds(double d, double v, double accel) {
+    if (d <= 0 || v <= 0) return 0;
+    return d >= v * v / accel ? d / v + v / accel : 2 * std::sqrt(d / accel);
+}
+
 // Writes one layer's block, starting and ending in the saved state.
 class BlockWriter {
 public:
     BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
-                std::string_view restore_type, gcode::Dialect dialect, const layers::BedMesh* mesh)
+                std::string_view restore_type, gcode::Dialect dialect, const layers::BedMesh* mesh, double accel)
         // Retract the way the slicer did at this point: filament pulled back
         // by E is given back by E, whatever else the file does elsewhere.
         : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
-          restore_type_(restore_type), dialect_(dialect), mesh_(mesh) {
+          restore_type_(restore_type), dialect_(dialect), mesh_(mesh), accel_(accel) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
         e_ = saved.e;
@@ -87,6 +109,7 @@ public:
 
     double filament() const { return filament_; }
     double length() const { return length_; }
+    double seconds() const { return seconds_; }
 
 private:
     void extrude_e(double de) {
@@ -103,6 +126,7 @@ private:
             num(out_, 'F', s_.retract_speed_mm_s * 60, 0);
             out_ += "\n";
         }
+        seconds_ += move_seconds(amount_, s_.retract_speed_mm_s, accel_);
         retracted_ = true;
     }
 
@@ -116,6 +140,8 @@ private:
             num(out_, 'F', speed * 60, 0);
             out_ += "\n";
         }
+        seconds_ += move_seconds(amount_, s_.deretract_speed_mm_s > 0 ? s_.deretract_speed_mm_s : s_.retract_speed_mm_s,
+                                 accel_);
         retracted_ = false;
     }
 
@@ -136,6 +162,7 @@ private:
             num(out_, 'Y', y, 3);
             num(out_, 'F', s_.travel_speed_mm_s * 60, 0);
             out_ += "\n";
+            seconds_ += move_seconds(d, s_.travel_speed_mm_s, accel_);
         }
         if (std::abs(z - z_) > 1e-6) move_z(z);
         x_ = x;
@@ -185,6 +212,7 @@ private:
         num(out_, 'Z', z, 3);
         num(out_, 'F', s_.travel_speed_mm_s * 60, 0);
         out_ += "\n";
+        seconds_ += move_seconds(std::abs(z - z_), s_.travel_speed_mm_s, accel_);
         z_ = z;
     }
 
@@ -222,6 +250,7 @@ private:
             filament_ += de;
             length_ += len;
             printed_.push_back({x_, y_, b.x, b.y, p.width});
+            seconds_ += move_seconds(len, p.speed_mm_s, accel_);
             x_ = b.x;
             y_ = b.y;
         }
@@ -238,10 +267,11 @@ private:
     std::string_view restore_type_;
     gcode::Dialect dialect_;
     const layers::BedMesh* mesh_;  // null without levelling in the file
+    double accel_;                  // mm/s^2, for the time estimate
     double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
     bool retracted_ = false, fan_changed_ = false;
     int fan_ = 0;
-    double filament_ = 0, length_ = 0;
+    double filament_ = 0, length_ = 0, seconds_ = 0;
     std::vector<Bead> printed_;  // this block's beads, for the travel rule
     std::string out_;
 };
@@ -293,6 +323,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     std::uint64_t released = 0;  // text before this was lexed and released
     bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
     std::int64_t open = -1;  // line that opened the labelled block open at `line`
+    const double accel = planned_acceleration(program);
     for (const toolpath::LayerPaths& lp : paths.layers) {
         const layers::Layer& layer = stack.layers[lp.layer];
         std::uint32_t at = std::max(line, outside_blocks(program, line, layer.end_line, open, result.blocks_split));
@@ -311,12 +342,14 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
         program.text.release(released, upto);
         released = upto;
-        BlockWriter w(st, settings, layer, fw, last_type, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh);
+        BlockWriter w(st, settings, layer, fw, last_type, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh, accel);
         gcode::Edit e;
         e.line = at;
         e.text = w.write(lp.paths);
         result.filament_mm += w.filament();
         result.extruded_length_mm += w.length();
+        result.block_seconds.push_back(w.seconds());
+        result.seconds += w.seconds();
         result.edits.push_back(std::move(e));
         ++result.layers_touched;
     }

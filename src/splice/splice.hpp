@@ -17,6 +17,10 @@ namespace scaffold::splice {
 struct SpliceResult {
     std::vector<gcode::Edit> edits;  // one insertion per layer with support
     double filament_mm = 0;          // support filament, mm of filament
+    // Print time of each insertion (same order as `edits`), by a trapezoid
+    // per move at the file's acceleration: what the hosts' time lines grow by.
+    std::vector<double> block_seconds;
+    double seconds = 0;
     double extruded_length_mm = 0;   // support bead length
     int layers_touched = 0;
     // Insertions that fell inside an object's labelled block or a tool
