@@ -1,5 +1,7 @@
 #include "check/printability.hpp"
 
+#include "gcode/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,11 +26,7 @@ namespace {
 using layers::kZEps;
 constexpr double kStraightDeg = 10;
 
-std::string fixed(double v, int d) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%.*f", d, v);
-    return b;
-}
+using gcode::fixed;
 
 bool comment_only(std::string_view t) {
     std::size_t i = t.find_first_not_of(" \t\r");

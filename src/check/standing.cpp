@@ -1,5 +1,7 @@
 #include "check/standing.hpp"
 
+#include "gcode/format.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,11 +32,7 @@ constexpr double kMinI = 1e-12;        // mm^4: a section of no area
 constexpr double kSameSpot = 2.0;      // mm: weak islands this close are listed once
 constexpr int kTravelNotes = 5;
 
-std::string fixed(double v, int d) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%.*f", d, v);
-    return b;
-}
+using gcode::fixed;
 
 // A cantilever's compliance as three running integrals over its height
 // (of dz/EI, z dz/EI, z^2 dz/EI, z from z_ref): its compliance at height z

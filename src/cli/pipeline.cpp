@@ -1,5 +1,7 @@
 #include "cli/pipeline.hpp"
 
+#include "gcode/format.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,11 +59,7 @@ const char* method_name(Method m) {
     return "?";
 }
 
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
+using gcode::fixed;
 
 double filament_volume_cm3(double mm, double diameter) { return mm * std::numbers::pi * diameter * diameter / 4 / 1000; }
 

@@ -1,5 +1,7 @@
 #include "splice/times.hpp"
 
+#include "gcode/format.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -41,11 +43,7 @@ bool read_dhms(std::string_view s, double& seconds, std::size_t& n) {
     return any;
 }
 
-std::string fixed(double v, int decimals) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    return buf;
-}
+using gcode::fixed;
 
 // Decimals as the slicer wrote the number ("4544" -> 0, "86.189125" -> 6).
 int decimals_of(std::string_view number) {
