@@ -224,10 +224,11 @@ Outcome run(const Request& req, spdlog::logger& log) {
     plan::Scaffold scaffold;
     toolpath::SupportPaths paths;
     std::vector<plan::Bridge> forbidden;
+    const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
     for (int round = 0;; ++round) {
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
-                                                      : plan::plan_scaffold(points, stack, *obstacles, settings, forbidden);
+                                                      : plan::plan_scaffold(points, stack, *obstacles, settings, forbidden, answers);
         // A tip set off its point (a slot, a wall) holds less of the sheet than
         // the point stood for (METHOD's rule (c)): what it leaves gets points and
         // pillars of its own, a few rounds at most.
@@ -241,7 +242,8 @@ Outcome run(const Request& req, spdlog::logger& log) {
         const std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
         if (bad.empty()) break;
         for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
-        log.debug("{} bars not held as built: planning again without them", bad.size());
+        log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
+                  1000 * std::chrono::duration<double>(Clock::now() - time.t).count());
     }
     time.lap("plan");
     obstacles.reset();  // one raster per layer: free before the text is read again

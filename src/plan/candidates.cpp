@@ -89,8 +89,10 @@ struct BridgeSearch::Index {
     }
 };
 
-BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings, int threads)
-    : model_(model), s_(settings), index_(std::make_shared<Index>()) {
+BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings, int threads,
+                           std::shared_ptr<ModelAnswers> answers)
+    : model_(model), s_(settings), answers_(answers ? std::move(answers) : std::make_shared<ModelAnswers>()),
+      index_(std::make_shared<Index>()) {
     reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
     // By default a second thread only without model queries: with them, on
     // real prints, the queries behind their one lock dominate and the
@@ -156,14 +158,14 @@ bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double 
     if (!model_.segment_clear) return true;
     Key key = key_of(x0, y0, x1, y1, z);
     std::lock_guard<std::mutex> lock(model_mutex_);
-    if (auto it = bar_cache_.find(key); it != bar_cache_.end()) return it->second;
+    if (auto it = answers_->bars.find(key); it != answers_->bars.end()) return it->second;
     // The bar fills the layers up to kBarThickness above z; its ends reach
     // into the pillar tops, so the whole pillar radius keeps the gap.
     std::vector<double> layers = model_.tops_between(z, z + kBarThickness, s_.layer_height);
     bool ok = !layers.empty();
     for (double zl : layers)
         ok = ok && model_.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
-    bar_cache_.emplace(key, ok);
+    answers_->bars.emplace(key, ok);
     return ok;
 }
 
@@ -175,9 +177,9 @@ bool BridgeSearch::end_stands(double x, double y, double z) {
     if (!model_.end_stands) return true;
     const Key key{std::lround(x * 1000), std::lround(y * 1000), std::lround(z * 1000), 0, 0};
     std::lock_guard<std::mutex> lock(model_mutex_);
-    if (auto it = end_cache_.find(key); it != end_cache_.end()) return it->second;
+    if (auto it = answers_->ends.find(key); it != answers_->ends.end()) return it->second;
     bool ok = model_.end_stands(x, y, z);
-    end_cache_.emplace(key, ok);
+    answers_->ends.emplace(key, ok);
     return ok;
 }
 

@@ -83,9 +83,10 @@ struct BridgePlan {
 
 // The greedy loop (METHOD.md step 4): take the best bridge that can really
 // be built, remove what it carries, add its two ends, repeat.
-BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0) {
+BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0,
+                        std::shared_ptr<ModelAnswers> answers = nullptr) {
     BridgePlan out;
-    BridgeSearch search(m, s, threads);
+    BridgeSearch search(m, s, threads, std::move(answers));
     for (const Active& a : start) search.add(a);
     // Bounded work where the model is in the way everywhere.
     long rejects_left = 20000 + 400 * static_cast<long>(start.size());
@@ -258,7 +259,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
 constexpr double kForbiddenNear = 1.0;
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
-                       const Settings& s, const std::vector<Bridge>& forbidden) {
+                       const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers) {
     // Layers by z without purge lines: the layer above a height.
     LayerIndex by_z;
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
@@ -298,7 +299,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
         start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
-    BridgePlan plan = plan_bridges(start, m, s);
+    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers));
     Scaffold out;
     out.bridges = std::move(plan.bridges);
     out.columns = std::move(plan.connectors);

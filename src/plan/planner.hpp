@@ -37,9 +37,10 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
 
 // The pipeline's: the same bridges, but every pillar (under points and
 // bridge ends) is dropped by drop_pillar, which steps around the model, and
-// a bridge is placed only where both its ends get one.
+// a bridge is placed only where both its ends get one. Plans made again on
+// the same stack, obstacles and settings may share `answers`.
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                        const Obstacles& obstacles, const Settings& settings,
-                       const std::vector<Bridge>& forbidden = {});
+                       const std::vector<Bridge>& forbidden = {}, std::shared_ptr<ModelAnswers> answers = nullptr);
 
 }  // namespace scaffold::plan

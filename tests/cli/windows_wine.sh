@@ -25,7 +25,21 @@ trap cleanup EXIT
 # Wine sees / as drive Z:, and the Windows programs get Windows paths.
 winpath() { local p="${1//\//\\}"; echo "Z:$p"; }
 lin() { "$build/scaffold" -q "$@"; }
-win() { "$wine" "$winbuild/scaffold.exe" -q "$@"; }
+# Wine's server, when it exits after its last client, can race a new client
+# ("wine client error:0: recvmsg: Connection reset by peer"): keep it up for
+# the whole test, and run a program again if its server still dropped it.
+"$wineserver" -p
+win() {
+  local attempt rc in=/dev/null a
+  for a in "$@"; do [ "$a" = - ] && { in="$tmp/win.stdin"; cat > "$in"; }; done
+  for attempt in 1 2 3; do
+    "$wine" "$winbuild/scaffold.exe" -q "$@" < "$in" > "$tmp/win.stdout" 2> "$tmp/win.stderr"; rc=$?
+    grep -q 'wine client error' "$tmp/win.stderr" || break
+    echo "note: Wine's server dropped scaffold.exe (attempt $attempt), running it again" >&2
+  done
+  cat "$tmp/win.stdout"; cat "$tmp/win.stderr" >&2
+  return "$rc"
+}
 fail=0; n=0
 bad() { echo "FAIL $*"; fail=1; }
 
