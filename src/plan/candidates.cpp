@@ -67,6 +67,7 @@ struct BridgeSearch::Scratch {
     std::vector<double> miss_z;
     std::vector<int> hits, left, right, reach, gbeg, gend, count, by_t;
     std::vector<char> carried;  // carries(i, z) at the current height
+    std::vector<signed char> stands;
     std::vector<double> heights, wl, wr, ws;
 };
 
@@ -321,18 +322,31 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     };
     const bool eager = sd.blocked >= kLazyBars;
     // `blocked` is set when the model blocks the bar itself.
+    // Whether a pillar stands under each end at the height being scanned
+    // (by point index; 0 not asked yet, 1 yes, 2 no): an end is asked for
+    // many spans, and the shared answers are behind a lock and a hash.
+    std::vector<signed char>& stands = sc.stands;
+    double stands_z = -1;
     auto usable = [&](int a, int b, double z, bool& blocked) {
         double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
         double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
         blocked = false;
         // The bar before the ends when the bar is tested here at all: a
         // blocked bar spares the pillar searches under its ends.
-        if (rejected_.count(key_of(x0, y0, x1, y1, z))) return false;
+        if (!rejected_.empty() && rejected_.count(key_of(x0, y0, x1, y1, z))) return false;
         if (eager && !bar_clear(x0, y0, x1, y1, z)) {
             blocked = true;
             return false;
         }
-        return end_stands(x0, y0, z) && end_stands(x1, y1, z);
+        if (z != stands_z) {
+            stands.assign(n, 0);
+            stands_z = z;
+        }
+        auto end_ok = [&](int i, double x, double y) {
+            if (!stands[i]) stands[i] = end_stands(x, y, z) ? 1 : 2;
+            return stands[i] == 1;
+        };
+        return end_ok(a, x0, y0) && end_ok(b, x1, y1);
     };
 
     // Points by the highest bar that carries them, to grow the carried set

@@ -4,6 +4,7 @@
 // point, kept per (point, direction) and updated only where the active set
 // changes, so the greedy planner does not rescan everything at each step.
 // Pure geometry: the model is seen through ModelView, which tests fake.
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -88,8 +89,15 @@ struct Candidate {
 using BarKey = std::tuple<long, long, long, long, long>;
 struct BarKeyHash {
     std::size_t operator()(const BarKey& k) const {
-        std::size_t h = 0;
-        auto mix = [&h](long v) { h = (h ^ std::hash<long>{}(v)) * 0x100000001b3ULL; };
+        // std::hash<long> is the identity: mix the bits (splitmix64's
+        // finaliser), or nearby coordinates crowd the same buckets.
+        std::uint64_t h = 0;
+        auto mix = [&h](long v) {
+            h = (h ^ static_cast<std::uint64_t>(v)) + 0x9e3779b97f4a7c15ULL;
+            h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
+            h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+            h ^= h >> 31;
+        };
         mix(std::get<0>(k)); mix(std::get<1>(k)); mix(std::get<2>(k)); mix(std::get<3>(k)); mix(std::get<4>(k));
         return h;
     }
