@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
         ("pillar-radius", po::value<std::string>(), ("outer radius of a pillar, mm (default " + num(d.pillar_radius) + ")").c_str())
         ("tip-length", po::value<std::string>(), ("length of the tapered tip under the overhang, mm (default " + num(d.tip_length) + ")").c_str())
         ("slenderness", po::value<std::string>(), ("largest pillar height / diameter before the pillar is widened (default " + num(d.slenderness) + ")").c_str())
+        ("min-stiffness", po::value<std::string>(), ("columns are widened toward their base until every support island stands at least this stiff against the nozzle, N/mm (METHOD's Standing rule; default " + num(d.min_stiffness) + ", as scaffold-check's; 0 leaves them at --pillar-radius)").c_str())
+        ("modulus", po::value<std::string>(), ("Young's modulus of the filament for --min-stiffness, N/mm^2 (default " + num(d.modulus) + ", PLA)").c_str())
         ("support-width", po::value<std::string>(), ("extrusion width of support lines, mm (default " + num(d.support_width) + ")").c_str())
         ("buildplate-only", "support only from the bed: points above the model are dropped and reported");
     po::options_description plan("Scaffolding planner (--method scaffold)");

@@ -253,6 +253,8 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
     if (l.number({"--top-gap-layers"}, tgl)) s.top_gap_layers = static_cast<int>(tgl);
     l.number({"--tip-length"}, s.tip_length);
     l.number({"--slenderness"}, s.slenderness);
+    l.number({"--min-stiffness"}, s.min_stiffness);
+    l.number({"--modulus"}, s.modulus);
     l.number({"--pillar-radius"}, s.pillar_radius);
     l.number({"--support-width"}, s.support_width);
     l.flag({"--buildplate-only"}, s.buildplate_only);
@@ -279,6 +281,8 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
     positive(program, "point_spacing", s.point_spacing);
     positive(program, "point_radius", s.point_radius);
     if (s.xy_gap < 0) throw Error("--xy-gap must not be negative");
+    if (!(s.min_stiffness >= 0)) throw Error("--min-stiffness must not be negative");
+    if (!(s.modulus > 0)) throw Error("--modulus must be positive");
     s.source = gcode::dialect_name(program.dialect);
     return s;
 }

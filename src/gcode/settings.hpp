@@ -61,6 +61,8 @@ struct Settings {
     double foot_height = 2.5;
     double raft_size = 7.0;
     double slenderness = 20.0;        // max pillar height / diameter
+    double min_stiffness = 2.0;       // N/mm at every support island's top (METHOD's Standing rule); 0: not sized for it
+    double modulus = 3500.0;          // N/mm^2, the filament's Young's modulus (PLA)
     double support_width = 0.45;      // extrusion width of support lines
     bool buildplate_only = false;
 

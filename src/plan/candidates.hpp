@@ -72,6 +72,9 @@ struct Active {
     double x = 0, y = 0;
     double z = 0;   // where its support reaches up to (a connector's or pillar's top)
     int point = -1; // support point index, or -1 for a bridge end
+    // A bridge end: the top of what stands on its bar, and the compliance
+    // (mm/N) of the connectors between, for METHOD's Standing rule.
+    double hold = 0, give = 0;
 };
 
 // One candidate bridge at height z (bottom of the bar) between (x0,y0) and

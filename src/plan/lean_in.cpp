@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "plan/stiffness.hpp"
+
 namespace scaffold::plan {
 
 std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_layer, const layers::LayerStack& stack,
@@ -64,7 +66,10 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
                     // a bounded number of them per point (each walks down the
                     // stack), so a point nothing reaches costs little.
                     if (++pillars_tried > kLeanInPillars) return std::nullopt;
-                    auto chain = drop_pillar(px, py, down[n - 1], Top::Bridge, stack, obs, s, trunks);
+                    // Sized for the leaning column's top, with its give.
+                    const double give = target_stiffness(s) > 0 ? ring_compliance(c.radius, 0, c.z1, c.z0, c.z1, s.support_width, s.modulus) : 0.0;
+                    auto chain = drop_pillar(px, py, down[n - 1], Top::Bridge, stack, obs, s, trunks, TipPlaces::Any, true,
+                                             c.z1, give);
                     if (!chain) continue;
                     if (s.buildplate_only && (chain->empty() || chain->front().base != Base::Bed)) continue;
                     if (chain->empty()) c.base = Base::Model;  // the model's top holds it

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "plan/lean_in.hpp"
+#include "plan/stiffness.hpp"
 
 namespace scaffold::plan {
 
@@ -22,7 +23,7 @@ LoopShape loop_shape(double r, double width) {
 }
 
 double column_radius_at(const Column& c, double z, const Settings& s) {
-    double r = c.radius;
+    double r = c.radius + (c.taper > 0 && z < c.hold_z ? c.taper * (c.hold_z - z) : 0.0);
     if (c.contact_z > 0 && s.tip_length > 0) {
         double t = (c.contact_z - z) / s.tip_length;  // 0 at the contact, 1 where the tip starts
         if (t < 1) r = s.tip_radius + (c.radius - s.tip_radius) * std::clamp(t, 0.0, 1.0);
@@ -111,7 +112,9 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             const double rc_up = loop_shape(column_radius_at(proto, up.z, s), s.support_width).centre_radius;
             const double hold = loop_shift_limit(height_above, s);
             for (const Trunks::Loop& o : trunks->at(l))
-                if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold) {
+                // (A trunk sized for less than what stands on this column
+                // would not stand it: METHOD's Standing rule.)
+                if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold && o.hold_z >= proto.hold_z - 1e-6) {
                     proto.base = Base::Column;
                     proto.z0 = layer.z;
                     return true;
@@ -252,10 +255,12 @@ int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Setting
     return l;
 }
 
-std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
-                                               const layers::LayerStack& stack, const Obstacles& obs,
-                                               const Settings& s, const Trunks* trunks, TipPlaces places,
-                                               bool fit_base) {
+namespace {
+
+std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int overhang_layer, Top top,
+                                                      const layers::LayerStack& stack, const Obstacles& obs,
+                                                      const Settings& s, const Trunks* trunks, TipPlaces places,
+                                                      bool fit_base, double hold, double give, double stiff) {
     const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
@@ -266,6 +271,12 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     proto.contact_z = proto.z1;
     // Tall pillars wobble: keep height / diameter within the slenderness limit.
     proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
+    // METHOD's Standing rule: widened downwards for what stands on it, as
+    // if it stood on the bed until its base is known.
+    if (stiff > 0) {
+        proto.hold_z = std::max(proto.z1, hold);
+        proto.taper = stiff * taper_for(proto.radius, proto.hold_z, target_stiffness(s), give, s.support_width, s.modulus);
+    }
     std::vector<Step> path;
     // A bridge end right over the model's top rests on it: no column needed.
     if (top == Top::Bridge) {
@@ -304,6 +315,14 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 if (c.radius < proto.radius && c.z1 - c.z0 > 2 * c.radius * s.slenderness) continue;
                 std::vector<Column> chain = columns_of(c, path);
                 if (chain.empty()) continue;  // no layer above its base (a layer at z <= 0)
+                // On the model the lever is shorter: as narrow as that allows
+                // (inside the path found for the wider one). On a trunk, the
+                // trunk's base is the base: keep it.
+                if (c.taper > 0 && c.base != Base::Column) {
+                    const double taper = stiff * taper_for(c.radius, c.hold_z - chain.front().z0, target_stiffness(s), give,
+                                                           s.support_width, s.modulus);
+                    for (Column& piece : chain) piece.taper = taper;
+                }
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
@@ -335,6 +354,24 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
+                                               const layers::LayerStack& stack, const Obstacles& obs,
+                                               const Settings& s, const Trunks* trunks, TipPlaces places,
+                                               bool fit_base, double hold, double give) {
+    // Whether a pillar stands at all (fit_base false: a bridge end asked
+    // about) is the plain column's question: a narrower one fits wherever a
+    // wider one does.
+    if (target_stiffness(s) > 0 && fit_base)
+        // Where the widened column finds no way down, less widened ones, then
+        // the plain one, weaker (scaffold-check reports it), rather than none.
+        for (double stiff : {1.0, 0.5, 0.25})
+            if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, stiff))
+                return chain;
+    return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, 0.0);
+}
+
 void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {
     for (const Column& c : chain)
         for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
@@ -342,7 +379,7 @@ void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& sta
             if (stack.layers[l].purge || z <= c.z0 + 1e-6 || z > c.z1 + 1e-6) continue;
             double x, y;
             column_centre_at(c, z, x, y);
-            at_[l].push_back({x, y, loop_shape(column_radius_at(c, z, s), s.support_width).centre_radius});
+            at_[l].push_back({x, y, loop_shape(column_radius_at(c, z, s), s.support_width).centre_radius, c.hold_z});
         }
 }
 

@@ -22,6 +22,7 @@ class Trunks {
 public:
     struct Loop {
         double x, y, rc;  // centre and centre-line radius
+        double hold_z;    // the top of what stands on its column
     };
     Trunks(const layers::LayerStack& stack, double steer) : at_(stack.layers.size()), steer_(steer) {}
     void add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& settings);
@@ -48,12 +49,16 @@ int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Setting
 // only the sheet a tip lies under): under the overhanging layer's material
 // first, then anywhere within reach (Any), or only one of the two.
 // `fit_base` false: no foot and raft fitted (whether a pillar stands does
-// not depend on them).
+// not depend on them). METHOD's Standing rule: the column widens downwards
+// until it stands --min-stiffness stiff (with a margin) at `hold`, the top
+// of what will stand on it (its own top if higher), with `give` mm/N of
+// that in series; where the widened one finds no way down, the plain one.
 enum class TipPlaces { Any, UnderSheet, Beside };
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
                                                const Settings& settings, const Trunks* trunks = nullptr,
-                                               TipPlaces places = TipPlaces::Any, bool fit_base = true);
+                                               TipPlaces places = TipPlaces::Any, bool fit_base = true,
+                                               double hold = 0, double give = 0);
 
 // Support point indices in a canonical order, so the plan does not depend
 // on the order of the input: place_points' own (layer, y, x), then z and index.

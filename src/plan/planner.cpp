@@ -8,6 +8,7 @@
 #include "plan/cavities.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
+#include "plan/stiffness.hpp"
 
 namespace scaffold::plan {
 
@@ -95,13 +96,26 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         std::vector<Column> connectors;
         std::vector<int> carried;
         double l_max = 0;
+        double hold = 0, give = 0;  // over the connectors: for the pillars under the ends
         // Ends first (cached), then connectors until too many have failed
         // for the gain to stay positive.
         bool ok = !(m.bar_trapped && m.bar_trapped(c->z, c->x0, c->y0, c->x1, c->y1)) &&
                   search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
         for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
             const int id = c->carried[i];
-            if (auto col = connector(*c, search.active(id), m, s)) {
+            const Active& a = search.active(id);
+            auto col = connector(*c, a, m, s);
+            // METHOD's Standing rule: a connector is a thin column on a bar;
+            // with what stands on it, it may give at most half of what the
+            // whole may (the pillar under the bar takes the rest).
+            double top = std::max(a.z, a.hold), give_i = 0;
+            if (col && target_stiffness(s) > 0) {
+                give_i = a.give + ring_compliance(col->radius, 0, top, col->z0, col->z1, s.support_width, s.modulus);
+                if (give_i > 0.5 / target_stiffness(s)) col.reset();
+            }
+            if (col) {
+                hold = std::max(hold, top);
+                give = std::max(give, give_i);
                 connectors.push_back(*col);
                 carried.push_back(id);
                 l_max = std::max(l_max, std::hypot(col->x1 - col->x0, col->y1 - col->y0) + col->z1 - c->z);
@@ -124,8 +138,8 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         out.bridges.push_back(std::move(br));
         out.connectors.insert(out.connectors.end(), connectors.begin(), connectors.end());
         for (int id : carried) search.remove(id);
-        search.add({c->x0, c->y0, c->z, -1});
-        search.add({c->x1, c->y1, c->z, -1});
+        search.add({c->x0, c->y0, c->z, -1, hold, give});
+        search.add({c->x1, c->y1, c->z, -1, hold, give});
     }
     for (int id = 0; id < search.size(); ++id)
         if (search.alive(id)) out.remaining.push_back(search.active(id));
@@ -316,7 +330,8 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
         std::optional<std::vector<Column>> chain;
-        if (overhang_layer >= 0 && a.point < 0) chain = drop_pillar(a.x, a.y, overhang_layer, Top::Bridge, stack, obs, s, &trunks);
+        if (overhang_layer >= 0 && a.point < 0)
+            chain = drop_pillar(a.x, a.y, overhang_layer, Top::Bridge, stack, obs, s, &trunks, TipPlaces::Any, true, a.hold, a.give);
         if (overhang_layer >= 0 && a.point >= 0) chain = support_point(a.x, a.y, overhang_layer, stack, obs, s, &trunks);
         if (!chain) {
             if (a.point >= 0) out.dropped_points.push_back(a.point);

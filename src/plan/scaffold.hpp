@@ -26,6 +26,10 @@ struct Column {
     // Height from which it leans (0 = from z0): a connector's first loop on
     // a bar is centred on the bar, which is narrower than a loop is wide.
     double lean_from = 0;
+    // METHOD's Standing rule: the radius grows by `taper` mm per mm below
+    // hold_z, the top of what stands on the column (0: no taper).
+    double taper = 0;
+    double hold_z = 0;
 };
 
 // A horizontal bar printed as a bridge at height z (its lowest layer's bottom).

@@ -73,9 +73,15 @@ TEST(Obstacles, NoPillarDownThroughAHollowPart) {
 }
 
 // 0.2 mm layers to 20 mm, a speck of model far away, and a pillar to
-// z = 10 at (50, 50) as the only trunk.
-struct Trunks : ::testing::Test {
+// z = 10 at (50, 50) as the only trunk. Columns of the plain radius
+// (--min-stiffness 0): the branches' geometry is under test here.
+Settings without_standing() {
     Settings s;
+    s.min_stiffness = 0;
+    return s;
+}
+struct Trunks : ::testing::Test {
+    Settings s = without_standing();
     const layers::LayerStack st = test::empty_stack(20, 80);
     const plan::Obstacles obs{st, s};
     const std::optional<std::vector<plan::Column>> trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
@@ -125,7 +131,7 @@ TEST_F(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
 }
 
 TEST(PlanPillars, PointsStackedUpASlopeShareOneColumn) {
-    Settings s;
+    Settings s = without_standing();
     const layers::LayerStack st = test::empty_stack(20, 80);
     const plan::Obstacles obs(st, s);
     // A slope's edge: a point on each of ten layers, 0.1 mm further out each
@@ -143,6 +149,30 @@ TEST(PlanPillars, PointsStackedUpASlopeShareOneColumn) {
     }
     EXPECT_EQ(on_bed, 1);
     EXPECT_EQ(plan.columns.size(), 10u);
+}
+
+// METHOD's Standing rule: a column stands on a trunk only where the trunk
+// was sized for what then stands on it. The trunk to z = 10 was sized for
+// its own top; a point over layer 70 (z 14) is higher, so it goes down on
+// its own, and the trunk's width at its foot is what its own top needs.
+TEST(PlanPillars, AColumnStandsOnlyOnATrunkSizedForIt) {
+    Settings s;  // --min-stiffness 2
+    const layers::LayerStack st = test::empty_stack(20, 80);
+    const plan::Obstacles obs(st, s);
+    const auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(trunk);
+    plan::Trunks trunks(st, plan::kBranchSteer);
+    trunks.add(*trunk, st, s);
+    const auto branch = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
+    ASSERT_TRUE(branch);
+    EXPECT_EQ(branch->front().base, plan::Base::Bed);
+    // 10 mm of 2 mm ring is stiff enough (3 E I / h^3 = 3 x 3500 x pi x
+    // 0.775^3 x 0.45 / 1000 = 6.9 N/mm > 2.5): no taper.
+    EXPECT_EQ(trunk->front().taper, 0.0);
+    Settings off = without_standing();
+    const auto plain = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, off, &trunks);
+    ASSERT_TRUE(plain);
+    EXPECT_EQ(plain->front().base, plan::Base::Column);
 }
 
 TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
