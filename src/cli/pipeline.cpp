@@ -245,6 +245,11 @@ Outcome run(const Request& req, spdlog::logger& log) {
         log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
                   1000 * std::chrono::duration<double>(Clock::now() - time.t).count());
     }
+    if (log.should_log(spdlog::level::trace))
+        for (const plan::Column& c : scaffold.columns)
+            log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "
+                      "base {}, point {}",
+                      c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius, c.taper, c.hold_z, static_cast<int>(c.base), c.point);
     time.lap("plan");
     obstacles.reset();  // one raster per layer: free before the text is read again
     time.lap("toolpath");

@@ -1,5 +1,6 @@
 // scaffold: reads sliced G-code, adds support structures, writes G-code.
 // A thin program over the pipeline library: options, logging, exit codes.
+#include <cstdlib>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -121,7 +122,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     if (vm.count("quiet")) logger->set_level(spdlog::level::err);
-    if (vm.count("verbose")) logger->set_level(spdlog::level::debug);
+    if (vm.count("verbose")) logger->set_level(std::getenv("SCAFFOLD_TRACE") ? spdlog::level::trace : spdlog::level::debug);
 
     scaffold::cli::Request req;
     req.input = vm["input"].as<std::string>();

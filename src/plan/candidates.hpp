@@ -102,7 +102,7 @@ struct BarKeyHash {
             h ^= h >> 31;
         };
         mix(std::get<0>(k)); mix(std::get<1>(k)); mix(std::get<2>(k)); mix(std::get<3>(k)); mix(std::get<4>(k));
-        return h;
+        return static_cast<std::size_t>(h);
     }
 };
 
