@@ -274,6 +274,9 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
     // METHOD's Standing rule: widened downwards for what stands on it, as
     // if it stood on the bed until its base is known.
     if (stiff > 0) {
+        // No narrow neck under a bar that holds more above it: a neck far
+        // below the top it holds is where such a column gives most.
+        if (top == Top::Bridge && hold > proto.z1 + 1e-6) proto.contact_z = 0;
         proto.hold_z = std::max(proto.z1, hold);
         proto.taper = stiff * taper_for(proto.radius, proto.hold_z, target_stiffness(s), give, s.support_width, s.modulus);
     }
