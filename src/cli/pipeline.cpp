@@ -19,6 +19,7 @@
 #include "layers/layer_stack.hpp"
 #include "overhang/dump.hpp"
 #include "overhang/overhangs.hpp"
+#include "plan/braces.hpp"
 #include "plan/coverage.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
@@ -235,6 +236,10 @@ Outcome run(const Request& req, spdlog::logger& log) {
         if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, *obstacles, settings,
                                                settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
             log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
+        // METHOD's Standing rule: columns too weak for it (no room to widen)
+        // tied to two neighbours in triangles.
+        if (int n = plan::add_braces(scaffold, stack, *obstacles, settings, forbidden))
+            log.debug("{} bars brace weak columns", n);
         paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
         // A bar whose line rule (b) does not hold as built (it passes along
         // the edge of a column it does not rest on): plan again without it.

@@ -69,7 +69,7 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
                     // Sized for the leaning column's top, with its give.
                     const double give = target_stiffness(s) > 0 ? ring_compliance(c.radius, 0, c.z1, c.z0, c.z1, s.support_width, s.modulus) : 0.0;
                     auto chain = drop_pillar(px, py, down[n - 1], Top::Bridge, stack, obs, s, trunks, TipPlaces::Any, true,
-                                             c.z1, give);
+                                             c.z1, give, true);
                     if (!chain) continue;
                     if (s.buildplate_only && (chain->empty() || chain->front().base != Base::Bed)) continue;
                     if (chain->empty()) c.base = Base::Model;  // the model's top holds it

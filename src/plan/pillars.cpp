@@ -114,7 +114,8 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             for (const Trunks::Loop& o : trunks->at(l))
                 // (A trunk sized for less than what stands on this column
                 // would not stand it: METHOD's Standing rule.)
-                if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold && o.hold_z >= proto.hold_z - 1e-6) {
+                if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold &&
+                    (!(target_stiffness(s) > 0) || o.hold_z >= proto.hold_z - 1e-6)) {
                     proto.base = Base::Column;
                     proto.z0 = layer.z;
                     return true;
@@ -260,7 +261,8 @@ namespace {
 std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int overhang_layer, Top top,
                                                       const layers::LayerStack& stack, const Obstacles& obs,
                                                       const Settings& s, const Trunks* trunks, TipPlaces places,
-                                                      bool fit_base, double hold, double give, double stiff) {
+                                                      bool fit_base, double hold, double give, double stiff,
+                                                      bool thin_above) {
     const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
@@ -273,11 +275,14 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
     proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
     // METHOD's Standing rule: widened downwards for what stands on it, as
     // if it stood on the bed until its base is known.
-    if (stiff > 0) {
+    proto.hold_z = std::max(proto.z1, hold);
+    // `stiff`: the share of the taper the rule asks for; negative: the plain
+    // column of old, with its neck.
+    if (stiff >= 0) {
         // No narrow neck under a bar that holds more above it: a neck far
         // below the top it holds is where such a column gives most.
-        if (top == Top::Bridge && hold > proto.z1 + 1e-6) proto.contact_z = 0;
-        proto.hold_z = std::max(proto.z1, hold);
+        // (A thin column standing on it needs the narrow top to rest on.)
+        if (top == Top::Bridge && hold > proto.z1 + 1e-6 && !thin_above) proto.contact_z = 0;
         proto.taper = stiff * taper_for(proto.radius, proto.hold_z, target_stiffness(s), give, s.support_width, s.modulus);
     }
     std::vector<Step> path;
@@ -322,8 +327,11 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                 // (inside the path found for the wider one). On a trunk, the
                 // trunk's base is the base: keep it.
                 if (c.taper > 0 && c.base != Base::Column) {
-                    const double taper = stiff * taper_for(c.radius, c.hold_z - chain.front().z0, target_stiffness(s), give,
-                                                           s.support_width, s.modulus);
+                    // Never wider than the descent was checked for (a thin
+                    // variant's own taper would be larger).
+                    const double taper = std::min(c.taper, stiff * taper_for(c.radius, c.hold_z - chain.front().z0,
+                                                                             target_stiffness(s), give, s.support_width,
+                                                                             s.modulus));
                     for (Column& piece : chain) piece.taper = taper;
                 }
                 if (fit_base && chain.front().base == Base::Bed)
@@ -343,12 +351,19 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
         // does not; last, the thinnest column the tip allows, in a slot
         // beside a wall.
         if (top == Top::Contact && !s.buildplate_only) {
+            // A thinner top needs more taper for the same stiffness.
+            auto retaper = [&](Column& c) {
+                if (proto.taper > 0)
+                    c.taper = stiff * taper_for(c.radius, c.hold_z, target_stiffness(s), give, s.support_width, s.modulus);
+            };
             Column thin = proto;
             thin.radius = std::max(s.tip_radius, s.pillar_radius * kThinFactor);
+            retaper(thin);
             if (thin.radius < proto.radius)
                 if (auto chain = search(thin)) return chain;
             Column thinnest = proto;
             thinnest.radius = s.tip_radius;
+            retaper(thinnest);
             if (thinnest.radius < thin.radius)
                 if (auto chain = search(thinnest)) return chain;
         }
@@ -362,17 +377,18 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
                                                const Settings& s, const Trunks* trunks, TipPlaces places,
-                                               bool fit_base, double hold, double give) {
+                                               bool fit_base, double hold, double give, bool thin_above) {
     // Whether a pillar stands at all (fit_base false: a bridge end asked
     // about) is the plain column's question: a narrower one fits wherever a
     // wider one does.
     if (target_stiffness(s) > 0 && fit_base)
         // Where the widened column finds no way down, less widened ones, then
-        // the plain one, weaker (scaffold-check reports it), rather than none.
-        for (double stiff : {1.0, 0.5, 0.25})
-            if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, stiff))
+        // a straight one without a neck, then the plain one with its neck,
+        // weaker (braced or reported by scaffold-check), rather than none.
+        for (double stiff : {1.0, 0.5, 0.25, 0.0})
+            if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, stiff, thin_above))
                 return chain;
-    return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, 0.0);
+    return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, -1.0, thin_above);
 }
 
 void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {

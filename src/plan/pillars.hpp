@@ -53,12 +53,14 @@ int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Setting
 // until it stands --min-stiffness stiff (with a margin) at `hold`, the top
 // of what will stand on it (its own top if higher), with `give` mm/N of
 // that in series; where the widened one finds no way down, the plain one.
+// Under a bar that holds more above it the top is not narrowed to a tip,
+// unless a thin column stands on it (`thin_above`: lean_in's).
 enum class TipPlaces { Any, UnderSheet, Beside };
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
                                                const Settings& settings, const Trunks* trunks = nullptr,
                                                TipPlaces places = TipPlaces::Any, bool fit_base = true,
-                                               double hold = 0, double give = 0);
+                                               double hold = 0, double give = 0, bool thin_above = false);
 
 // Support point indices in a canonical order, so the plan does not depend
 // on the order of the input: place_points' own (layer, y, x), then z and index.

@@ -269,8 +269,15 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
     return out;
 }
 
-// How near a bar's ends must lie to a forbidden bar's to be forbidden too.
-constexpr double kForbiddenNear = 1.0;
+bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, double layer_height) {
+    auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
+    for (const Bridge& f : forbidden)
+        if (std::abs(f.z - b.z) < 1.5 * layer_height &&
+            ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
+             (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0))))
+            return true;
+    return false;
+}
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers) {
@@ -289,17 +296,8 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // Bars that would be trapped in a hollow of the model are no bridges:
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
-    // Bars whose lines a plan before this one failed to hold (toolpath::
-    // unheld_bars) are not taken again, nor bars next to them (ends within
-    // kForbiddenNear, a layer or so apart), which would fail the same way.
     auto is_forbidden = [&](double z, double x0, double y0, double x1, double y1) {
-        auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
-        for (const Bridge& f : forbidden)
-            if (std::abs(f.z - z) < 1.5 * s.layer_height &&
-                ((near(f.x0, f.y0, x0, y0) && near(f.x1, f.y1, x1, y1)) ||
-                 (near(f.x0, f.y0, x1, y1) && near(f.x1, f.y1, x0, y0))))
-                return true;
-        return false;
+        return near_forbidden(forbidden, {x0, y0, x1, y1, z, {}, 0, 0}, s.layer_height);
     };
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
         if (is_forbidden(z, x0, y0, x1, y1)) return true;

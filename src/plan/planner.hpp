@@ -35,6 +35,12 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const Obstacles& o
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& model, const Settings& settings,
                        int threads = 0);
 
+// Bars whose lines a plan before this one failed to hold (toolpath::
+// unheld_bars) are not taken again, nor bars next to them (ends within
+// kForbiddenNear, a layer or so apart), which would fail the same way.
+inline constexpr double kForbiddenNear = 1.0;
+bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& bar, double layer_height);
+
 // The pipeline's: the same bridges, but every pillar (under points and
 // bridge ends) is dropped by drop_pillar, which steps around the model, and
 // a bridge is placed only where both its ends get one. Plans made again on

@@ -1,0 +1,266 @@
+#include "plan/braces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <tuple>
+
+#include "plan/candidates.hpp"
+#include "plan/pillars.hpp"
+#include "plan/planner.hpp"
+#include "plan/stiffness.hpp"
+
+namespace scaffold::plan {
+
+namespace {
+
+constexpr double kEps = 1e-6;
+// Every angle of a tie's triangle at least this: three columns not on one
+// line (METHOD: two of their directions from the node 60 degrees apart).
+constexpr double kMinAngleDeg = 30.0;
+
+const Column* piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
+    for (int i : chain.pieces) {
+        const Column& c = sc.columns[i];
+        if (z > c.z0 + kEps && z <= c.z1 + kEps) return &c;
+    }
+    return nullptr;
+}
+
+// The smallest angle of triangle abc, degrees.
+double min_angle(double ax, double ay, double bx, double by, double cx, double cy) {
+    auto angle = [](double px, double py, double qx, double qy, double rx, double ry) {
+        const double ux = qx - px, uy = qy - py, vx = rx - px, vy = ry - py;
+        const double d = std::hypot(ux, uy) * std::hypot(vx, vy);
+        return d > 0 ? std::acos(std::clamp((ux * vx + uy * vy) / d, -1.0, 1.0)) * 180 / std::numbers::pi : 0.0;
+    };
+    return std::min({angle(ax, ay, bx, by, cx, cy), angle(bx, by, cx, cy, ax, ay), angle(cx, cy, ax, ay, bx, by)});
+}
+
+}  // namespace
+
+std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
+    std::vector<PillarChain> out;
+    bool open = false;
+    for (int i = 0; i < static_cast<int>(sc.columns.size()); ++i) {
+        const Column& c = sc.columns[i];
+        if (c.base == Base::Bed || c.base == Base::Model) {
+            out.push_back({{i}, c.z0, c.z1, std::max(c.z1, c.hold_z)});
+            open = true;
+            continue;
+        }
+        // Stacked on the piece just before it, where that one ends.
+        const Column* prev = i > 0 ? &sc.columns[i - 1] : nullptr;
+        if (open && c.base == Base::Column && prev && std::abs(c.z0 - prev->z1) < kEps &&
+            std::hypot(c.x0 - prev->x1, c.y0 - prev->y1) < kEps) {
+            PillarChain& p = out.back();
+            p.pieces.push_back(i);
+            p.top = c.z1;
+            p.hold = std::max({p.hold, c.z1, c.hold_z});
+            continue;
+        }
+        open = false;
+    }
+    return out;
+}
+
+double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc, const layers::LayerStack& stack,
+                        const Settings& s) {
+    const double w = s.support_width;
+    double compliance = 0;
+    for (const layers::Layer& layer : stack.layers) {
+        if (layer.purge || layer.z > top + kEps) continue;
+        const Column* c = piece_at(chain, sc, layer.z);
+        if (!c) continue;
+        const double r = column_radius_at(*c, layer.z, s);
+        double inertia = ring_inertia(r, w);
+        // The second wall the toolpaths give a wide column not sized for the rule.
+        if (r - w > 1.5 * w && r > 1.4 && !(c->taper > 0)) inertia += ring_inertia(r - w * 0.9, w);
+        const double arm = top - (layer.z - layer.height / 2);
+        compliance += arm * arm * layer.height / (s.modulus * inertia);
+    }
+    return compliance;
+}
+
+int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
+               const std::vector<Bridge>& forbidden) {
+    const double target = target_stiffness(s);
+    if (!(target > 0)) return 0;
+    std::vector<PillarChain> chains = pillar_chains(sc);
+    // Layer tops, ascending (a bar is printed on the layers whose top lies
+    // in (z, z + kBarThickness]).
+    std::vector<std::pair<double, int>> tops;
+    for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l)
+        if (!stack.layers[l].purge) tops.emplace_back(stack.layers[l].z, l);
+    std::sort(tops.begin(), tops.end());
+    auto snap_down = [&](double z) {
+        auto it = std::upper_bound(tops.begin(), tops.end(), std::make_pair(z + kEps, -1));
+        return it == tops.begin() ? -1.0 : std::prev(it)->first;
+    };
+    auto bar_layers = [&](double z) {
+        std::vector<std::pair<double, int>> out;
+        for (auto it = std::upper_bound(tops.begin(), tops.end(), std::make_pair(z + kEps, -1));
+             it != tops.end() && it->first <= z + kBarThickness + kEps; ++it)
+            out.push_back(*it);
+        return out;
+    };
+    const double w = s.support_width;
+    const double keep = w + s.xy_gap + s.resolution / 2;  // the bar's half width (two lines), the gap, half a cell
+    // A column's centre and loop centre line on a bar's first layer; at the
+    // top of a column that ends under the bar (a helper), its top's centre.
+    struct At {
+        double x, y, rc;
+    };
+    auto at = [&](const PillarChain& p, double b, double zc) -> std::optional<At> {
+        if (p.base > b - kEps) return std::nullopt;
+        if (const Column* c = piece_at(p, sc, zc)) {
+            At a{0, 0, loop_shape(column_radius_at(*c, zc, s), w).centre_radius};
+            column_centre_at(*c, zc, a.x, a.y);
+            return a;
+        }
+        if (std::abs(p.top - b) < kEps) {
+            const Column& c = sc.columns[p.pieces.back()];
+            return At{c.x1, c.y1, 0.0};
+        }
+        return std::nullopt;
+    };
+    // The bar between two columns at height b, from loop to loop, when it is clear.
+    auto bar = [&](const At& p, const At& q, double b) -> std::optional<Bridge> {
+        const double d = std::hypot(q.x - p.x, q.y - p.y);
+        if (d <= p.rc + q.rc + 2 * w + 0.5 || d > kBraceReach) return std::nullopt;
+        const double ux = (q.x - p.x) / d, uy = (q.y - p.y) / d;
+        Bridge br{p.x + ux * p.rc, p.y + uy * p.rc, q.x - ux * q.rc, q.y - uy * q.rc, b, {}, 0, 0};
+        if (near_forbidden(forbidden, br, s.layer_height)) return std::nullopt;
+        for (const auto& [z, l] : bar_layers(b))
+            if (!obs.segment_clear(l, br.x0, br.y0, br.x1, br.y1, keep)) return std::nullopt;
+        return br;
+    };
+    // Whether two pillars stand apart at their bases: columns sharing a raft
+    // or a foot are one column (METHOD: columns that meet lower down), and
+    // one column tied to itself is no brace.
+    auto bases_apart = [&](const PillarChain& p, const PillarChain& q) {
+        const Column &a = sc.columns[p.pieces.front()], &b = sc.columns[q.pieces.front()];
+        const double dx = std::abs(a.x0 - b.x0), dy = std::abs(a.y0 - b.y0);
+        if (a.base == Base::Bed && b.base == Base::Bed && a.raft_size > 0 && b.raft_size > 0 &&
+            std::max(dx, dy) <= (a.raft_size + b.raft_size) / 2 + 2 * w)
+            return false;
+        auto reach = [&](const Column& c) { return std::max({c.radius, c.foot_radius, c.raft_size / std::numbers::sqrt2}); };
+        return std::hypot(dx, dy) > reach(a) + reach(b) + 2 * w || std::max(dx, dy) > (a.raft_size + b.raft_size) / 2 + 2 * w;
+    };
+    // The triangle W, P, Q tied at every level: its bars, or none if one fails.
+    auto triangle = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
+                        const std::vector<double>& levels) -> std::vector<Bridge> {
+        if (!bases_apart(W, P) || !bases_apart(W, Q) || !bases_apart(P, Q)) return {};
+        std::vector<Bridge> out;
+        for (double b : levels) {
+            const double zc = bar_layers(b).front().first;
+            const auto a = at(W, b, zc), p = at(P, b, zc), q = at(Q, b, zc);
+            if (!a || !p || !q || min_angle(a->x, a->y, p->x, p->y, q->x, q->y) < kMinAngleDeg) return {};
+            auto ap = bar(*a, *p, b), aq = bar(*a, *q, b), pq = bar(*p, *q, b);
+            if (!ap || !aq || !pq) return {};
+            out.insert(out.end(), {*ap, *aq, *pq});
+        }
+        return out;
+    };
+    int added = 0;
+    const int weak_count = static_cast<int>(chains.size());  // helpers added below are not braced in turn
+    std::vector<char> braced(chains.size(), 0);                // a corner of a triangle placed already
+    for (int wi = 0; wi < weak_count; ++wi) {
+        if (braced[wi]) continue;
+        const PillarChain W = chains[wi];
+        if (W.hold - W.base < kBraceStep) continue;  // short: it stands by itself
+        if (1 / chain_compliance(W, W.hold, sc, stack, s) >= target) continue;
+        std::vector<double> levels;
+        for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) {
+            const double b = snap_down(want);
+            if (b > W.base + 1 && !bar_layers(b).empty() && (levels.empty() || b > levels.back() + kEps)) levels.push_back(b);
+        }
+        if (levels.empty()) continue;
+        const double b_top = levels.back(), zc_top = bar_layers(b_top).front().first;
+        const std::optional<At> a = at(W, b_top, zc_top);
+        if (!a) continue;
+        // Partners: columns reaching through the top tie, nearest first.
+        std::vector<std::pair<double, int>> partners;
+        for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
+            if (ci == wi || chains[ci].top < zc_top + kBarThickness + 1.0) continue;
+            if (const auto p = at(chains[ci], b_top, zc_top)) {
+                const double d = std::hypot(p->x - a->x, p->y - a->y);
+                if (d <= kBraceReach) partners.emplace_back(d, ci);
+            }
+        }
+        std::sort(partners.begin(), partners.end());
+        std::vector<Bridge> bars;
+        std::vector<int> corners;
+        for (std::size_t i = 0; i < partners.size() && bars.empty(); ++i)
+            for (std::size_t j = i + 1; j < partners.size() && bars.empty(); ++j) {
+                bars = triangle(W, chains[partners[i].second], chains[partners[j].second], levels);
+                if (!bars.empty()) corners = {partners[i].second, partners[j].second};
+            }
+        // Too few neighbours: a helper pillar up to the top tie (its top
+        // under the bar) makes the third corner, or two make the second and
+        // third, forming an equilateral triangle with W.
+        std::vector<PillarChain> helpers;
+        auto helper = [&](double x, double y) -> std::optional<PillarChain> {
+            const int above = bar_layers(b_top).front().second;
+            auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true, b_top);
+            if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
+            PillarChain p;
+            p.base = chain->front().z0;
+            p.top = chain->back().z1;
+            p.hold = b_top;
+            for (Column& c : *chain) {
+                p.pieces.push_back(static_cast<int>(sc.columns.size()));
+                sc.columns.push_back(c);  // taken out again below if the triangle fails
+            }
+            return p;
+        };
+        auto drop_helpers = [&](std::size_t columns_before) { sc.columns.resize(columns_before); };
+        for (std::size_t i = 0; bars.empty() && i <= partners.size() && i < 4; ++i) {
+            const std::size_t before = sc.columns.size();
+            for (int k = 0; k < 12 && bars.empty(); ++k)
+                for (double d : {10.0, 12.0}) {
+                    if (!bars.empty()) break;
+                    drop_helpers(before);
+                    helpers.clear();
+                    if (i < partners.size()) {
+                        // Apex of the equilateral triangle on W and the partner, either side.
+                        const PillarChain& P = chains[partners[i].second];
+                        const auto p = at(P, b_top, zc_top);
+                        if (k >= 2 || d != 10.0 || !p) continue;
+                        const double mx = (a->x + p->x) / 2, my = (a->y + p->y) / 2, len = partners[i].first;
+                        const double sign = k == 0 ? 1.0 : -1.0, h = len * std::sqrt(3.0) / 2;
+                        auto hq = helper(mx - sign * (p->y - a->y) / len * h, my + sign * (p->x - a->x) / len * h);
+                        if (!hq) continue;
+                        bars = triangle(W, P, *hq, levels);
+                        if (!bars.empty()) {
+                            helpers.push_back(*hq);
+                            corners = {partners[i].second};
+                        }
+                    } else {
+                        const double t = k * std::numbers::pi / 6;
+                        auto h1 = helper(a->x + d * std::cos(t), a->y + d * std::sin(t));
+                        if (!h1) continue;
+                        auto h2 = helper(a->x + d * std::cos(t + std::numbers::pi / 3), a->y + d * std::sin(t + std::numbers::pi / 3));
+                        if (!h2) continue;
+                        bars = triangle(W, *h1, *h2, levels);
+                        if (!bars.empty()) helpers = {*h1, *h2};
+                    }
+                }
+            if (bars.empty()) drop_helpers(before);
+        }
+        if (bars.empty()) continue;
+        braced[wi] = 1;
+        for (int c : corners) braced[c] = 1;
+        for (const PillarChain& h : helpers) {
+            chains.push_back(h);
+            braced.push_back(1);
+        }
+        for (const Bridge& br : bars) sc.bridges.push_back(br);
+        added += static_cast<int>(bars.size());
+    }
+    return added;
+}
+
+}  // namespace scaffold::plan

@@ -1,0 +1,44 @@
+#pragma once
+// METHOD's Standing rule, braced: an island standing on three columns that
+// are not on one line moves only as all of them together, so its stiffness
+// is the sum of theirs, and what stands on it starts afresh there. A column
+// too weak for --min-stiffness (one that found no room to widen, beside a
+// curving model) is tied to two neighbours by bars in a triangle, every
+// kBraceStep of height: each part between ties then stands on its own short
+// length, a few N/mm for a plain 2 mm ring.
+#include <vector>
+
+#include "gcode/settings.hpp"
+#include "layers/layer_stack.hpp"
+#include "plan/obstacles.hpp"
+#include "plan/scaffold.hpp"
+
+namespace scaffold::plan {
+
+// Height between ties: a plain 2 mm ring 10 mm tall stands 6.9 N/mm
+// (3 E I / h^3), so a column tied this often stands well over 2 N/mm.
+inline constexpr double kBraceStep = 10.0;
+// Farthest neighbour a column is tied to (centre to centre).
+inline constexpr double kBraceReach = 20.0;
+
+// One pillar of a plan: a column standing on the bed or the model and the
+// pieces stacked on it (a chain of drop_pillar), bottom first.
+struct PillarChain {
+    std::vector<int> pieces;  // indices into Scaffold::columns
+    double base = 0, top = 0, hold = 0;
+};
+std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
+
+// A pillar's compliance (mm/N) at height `top` over it, summed layer by
+// layer over the loops it prints (their radius as the toolpaths draw them).
+double chain_compliance(const PillarChain& chain, double top, const Scaffold& scaffold,
+                        const layers::LayerStack& stack, const Settings& settings);
+
+// Ties each pillar weaker than target_stiffness at the top of what it holds
+// to two neighbours (triangles whose angles are all 30 degrees or more), at
+// every kBraceStep above the highest base of the three, with bars clear of
+// the model by the XY gap and not near a forbidden bar. Returns the bars added.
+int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
+               const Settings& settings, const std::vector<Bridge>& forbidden);
+
+}  // namespace scaffold::plan
