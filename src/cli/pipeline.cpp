@@ -255,6 +255,19 @@ Outcome run(const Request& req, spdlog::logger& log) {
             log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "
                       "base {}, point {}",
                       c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius, c.taper, c.hold_z, static_cast<int>(c.base), c.point);
+    if (log.should_log(spdlog::level::trace))
+        for (const plan::Bridge& b : scaffold.bridges)
+            log.trace("bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{}", b.x0, b.y0, b.x1, b.y1, b.z, b.brace ? ", brace" : "");
+    // Brace bars still not held as built after the last plan carry nothing:
+    // taken out (a tie less), not left in.
+    for (int k = 0; k < 3; ++k) {
+        std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        std::erase_if(bad, [&](std::size_t i) { return !scaffold.bridges[i].brace; });
+        if (bad.empty()) break;
+        for (auto it = bad.rbegin(); it != bad.rend(); ++it) scaffold.bridges.erase(scaffold.bridges.begin() + static_cast<long>(*it));
+        log.debug("{} brace bars not held as built: left out", bad.size());
+        paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
+    }
     time.lap("plan");
     obstacles.reset();  // one raster per layer: free before the text is read again
     time.lap("toolpath");

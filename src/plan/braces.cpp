@@ -131,7 +131,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         const double d = std::hypot(q.x - p.x, q.y - p.y);
         if (d <= p.rc + q.rc + 2 * w + 0.5 || d > kBraceReach) return std::nullopt;
         const double ux = (q.x - p.x) / d, uy = (q.y - p.y) / d;
-        Bridge br{p.x + ux * p.rc, p.y + uy * p.rc, q.x - ux * q.rc, q.y - uy * q.rc, b, {}, 0, 0};
+        Bridge br{p.x + ux * p.rc, p.y + uy * p.rc, q.x - ux * q.rc, q.y - uy * q.rc, b, {}, 0, 0, true};
         if (near_forbidden(forbidden, br, s.layer_height)) return std::nullopt;
         for (const auto& [z, l] : bar_layers(b))
             if (!obs.segment_clear(l, br.x0, br.y0, br.x1, br.y1, keep)) return std::nullopt;

@@ -38,6 +38,7 @@ struct Bridge {
     double z = 0;
     std::vector<int> points;        // support points it carries
     double gain = 0, score = 0;
+    bool brace = false;             // ties columns (plan/braces), carries nothing
 };
 
 struct Xyz {
