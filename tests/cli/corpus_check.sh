@@ -5,8 +5,11 @@
 # tolerance, 0 collisions, sane extrusion, model unchanged. With
 # --min-overhang-area 0 (no speck left out) the output must have no unheld
 # area at all (--tolerance-mm2 0).
-# The Standing rule is reported, not failed (--min-stiffness 0): scaffold's
-# pillars do not meet it yet (issue 24's planner half).
+# METHOD's Standing rule at the default (2 N/mm, travels over fresh support
+# reported): every output of the default method, and --method pillars where
+# its columns stand (a ratchet: the pillars of bunny, elephant and the
+# Slic3r overhang_test stand 0.3-0.9 N/mm, bunny's and elephant's with a
+# floating speck); reported only (--min-stiffness 0) at --min-overhang-area 0.
 # Known residuals at --min-overhang-area 0 since rule (b) was made exact
 # (issue 23, open): a ratchet, each bounded just above what it is today, so
 # nothing may get worse and each is listed until it is gone:
@@ -21,10 +24,16 @@ residual() {
     *) echo 0 ;;
   esac
 }
+stands() {
+  case "$1/$2" in
+    */scaffold|overhang_test.prusaslicer25*/pillars|overhang_test.cura413.nosup/pillars|torus.*/pillars) return 0 ;;
+    *) return 1 ;;
+  esac
+}
 set -euo pipefail
 build="$1"; src="$2"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
-fail=0; n=0
+fail=0; n=0; s=0
 for gz in "$src"/tests/data/corpus/*.gcode.gz; do
   name="$(basename "$gz" .gcode.gz)"
   gzip -dc "$gz" > "$tmp/in.gcode"
@@ -33,8 +42,10 @@ for gz in "$src"/tests/data/corpus/*.gcode.gz; do
   fi
   for m in pillars scaffold; do
     "$build/scaffold" -q --method "$m" "$tmp/in.gcode" -o "$tmp/out.gcode"
-    if ! "$build/scaffold-check" --min-stiffness 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
-      echo "FAIL $name --method $m:"; cat "$tmp/report.txt"; fail=1
+    standing=(--min-stiffness 0)
+    if stands "$name" "$m"; then standing=(); s=$((s+1)); fi
+    if ! "$build/scaffold-check" "${standing[@]}" "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
+      echo "FAIL $name --method $m (${standing[*]:-Standing rule at 2 N/mm}):"; cat "$tmp/report.txt"; fail=1
     fi
     # (once per model and slicer: the retraction variants plan the same)
     case "$name" in *-fwretract|*-relE|*-zhop) n=$((n+1)); continue ;; esac
@@ -48,4 +59,4 @@ for gz in "$src"/tests/data/corpus/*.gcode.gz; do
 done
 [ "$n" -ge 6 ] || { echo "FAIL: only $n runs"; exit 1; }
 [ "$fail" -eq 0 ] || exit 1
-echo "$n supported outputs pass scaffold-check, those of each model and slicer also with no unheld area at --min-overhang-area 0"
+echo "$n supported outputs pass scaffold-check ($s of them the Standing rule at 2 N/mm too), those of each model and slicer also with no unheld area at --min-overhang-area 0"
