@@ -64,17 +64,21 @@ TEST(Braces, PillarChainsFollowTheirPieces) {
     EXPECT_DOUBLE_EQ(chains[0].top, 20);
 }
 
+// 0.2 mm layers to 45 mm, no model near, an empty plan.
+struct BraceScene : ::testing::Test {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(45, 80);
+    const plan::Obstacles obs{st, s};
+    plan::Scaffold sc;
+};
+
 // Three plain 40 mm columns 10 mm apart in a triangle: each alone is
 // 40^3 / (3 x 2303.22) = 9.26 mm/N (0.108 N/mm), far under 2.5. Each is
 // tied to the other two at 10, 20 and 30 mm (its top less 3 mm reaches
 // 37): three bars a level, each from loop to loop (centre lines 0.775 mm
 // from the centres), so 10 - 2 x 0.775 = 8.45 mm long, three levels: 9
 // bars, no helper column; the other two are braced by the same triangle.
-TEST(Braces, ATriangleOfWeakColumnsIsTiedEveryTenMillimetres) {
-    Settings s;
-    const layers::LayerStack st = test::empty_stack(45, 80);
-    const plan::Obstacles obs(st, s);
-    plan::Scaffold sc;
+TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedEveryTenMillimetres) {
     sc.columns.push_back(plain(30, 30, 40));
     sc.columns.push_back(plain(40, 30, 40));
     sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
@@ -97,11 +101,7 @@ TEST(Braces, ATriangleOfWeakColumnsIsTiedEveryTenMillimetres) {
 
 // A column with no neighbour gets two helper columns up to its top tie,
 // 10 or 12 mm away, 60 degrees apart: an equilateral triangle.
-TEST(Braces, ALoneWeakColumnGetsTwoHelpers) {
-    Settings s;
-    const layers::LayerStack st = test::empty_stack(45, 80);
-    const plan::Obstacles obs(st, s);
-    plan::Scaffold sc;
+TEST_F(BraceScene, ALoneWeakColumnGetsTwoHelpers) {
     sc.columns.push_back(plain(40, 40, 40));
     EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 9);
     const auto chains = plan::pillar_chains(sc);
@@ -116,11 +116,7 @@ TEST(Braces, ALoneWeakColumnGetsTwoHelpers) {
 
 // A column already stiff enough is left alone: 10 mm stands 6.9 N/mm, and
 // the rule off ties nothing.
-TEST(Braces, StiffColumnsAndTheRuleOffTieNothing) {
-    Settings s;
-    const layers::LayerStack st = test::empty_stack(45, 80);
-    const plan::Obstacles obs(st, s);
-    plan::Scaffold sc;
+TEST_F(BraceScene, StiffColumnsAndTheRuleOffTieNothing) {
     sc.columns.push_back(plain(40, 40, 12));
     EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 0);
     plan::Scaffold tall;
