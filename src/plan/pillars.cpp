@@ -103,10 +103,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         // Only the contact itself (the top two layers) may come close to the model.
         // Half a cell more than the gap: the model's raster falls up to half
         // a cell short of a bead's edge, the validator measures from the bead.
-        // A widened column, a cell more: its loops step aside on layers
-        // where the model comes within a cell of the gap (a SuperSlicer
-        // benchy's helper column met its hull by 0.02 mm^2 with half).
-        double need = r + clearance_at(proto, layer.z, s) + s.resolution * (proto.taper > 0 ? 1.0 : 0.5);
+        double need = r + clearance_at(proto, layer.z, s) + s.resolution / 2;
         bool first = path.empty();
         if (trunks && !first && !trunks->at(l).empty()) {
             // Stand on a trunk whose loop here holds our loop above (its
