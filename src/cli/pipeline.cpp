@@ -226,6 +226,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     toolpath::SupportPaths paths;
     std::vector<plan::Bridge> forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
+    bool bars_held = false;  // the last plan's bars checked and all held
     for (int round = 0;; ++round) {
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
@@ -245,22 +246,23 @@ Outcome run(const Request& req, spdlog::logger& log) {
         // the edge of a column it does not rest on): plan again without it.
         if (round == kBarRounds) break;
         const std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
-        if (bad.empty()) break;
+        if ((bars_held = bad.empty())) break;
         for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
         log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
                   1000 * std::chrono::duration<double>(Clock::now() - time.t).count());
     }
-    if (log.should_log(spdlog::level::trace))
+    if (log.should_log(spdlog::level::trace)) {
         for (const plan::Column& c : scaffold.columns)
             log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "
                       "base {}, point {}",
                       c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius, c.taper, c.hold_z, static_cast<int>(c.base), c.point);
-    if (log.should_log(spdlog::level::trace))
         for (const plan::Bridge& b : scaffold.bridges)
             log.trace("bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{}", b.x0, b.y0, b.x1, b.y1, b.z, b.brace ? ", brace" : "");
+    }
     // Brace bars still not held as built after the last plan carry nothing:
-    // taken out (a tie less), not left in.
-    for (int k = 0; k < 3; ++k) {
+    // taken out (a tie less), not left in. (Not asked again when that plan's
+    // bars were checked and all held.)
+    for (int k = 0; k < 3 && !bars_held; ++k) {
         std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
         std::erase_if(bad, [&](std::size_t i) { return !scaffold.bridges[i].brace; });
         if (bad.empty()) break;

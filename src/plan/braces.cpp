@@ -4,8 +4,6 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
-#include <set>
-#include <tuple>
 
 #include "plan/candidates.hpp"
 #include "plan/pillars.hpp"
@@ -77,7 +75,7 @@ double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc
         const double r = column_radius_at(*c, layer.z, s);
         double inertia = ring_inertia(r, w);
         // The second wall the toolpaths give a wide column not sized for the rule.
-        if (r - w > 1.5 * w && r > 1.4 && !(c->taper > 0)) inertia += ring_inertia(r - w * 0.9, w);
+        if (second_wall(*c, r, w)) inertia += ring_inertia(r - w * 0.9, w);
         const double arm = top - (layer.z - layer.height / 2);
         compliance += arm * arm * layer.height / (s.modulus * inertia);
     }

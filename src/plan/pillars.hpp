@@ -97,6 +97,13 @@ inline constexpr double kFootMinHeight = 3.0;
 // Radius of a column at height z (tip taper, foot flare, base radius).
 double column_radius_at(const Column& c, double z, const Settings& settings);
 
+// Whether the toolpaths give a column's loop of outer radius r a second wall
+// inside it (at r - 0.9 w): wide pillars, but not those widened for the
+// Standing rule, sized as single walls.
+inline bool second_wall(const Column& c, double r, double width) {
+    return r - width > 1.5 * width && r > 1.4 && !(c.taper > 0);
+}
+
 // The printed loop of a column of outer radius r with beads of width w: a
 // regular polygon of `sides` vertices, the first at angle 0, on a circle of
 // radius `centre_radius` (the bead's centre line). The toolpaths print it

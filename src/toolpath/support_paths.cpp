@@ -299,7 +299,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // Wide pillars get a second wall so they stay stiff; not those
             // widened for METHOD's Standing rule, sized as single walls
             // (for the same stiffness a wider single wall costs less).
-            if (r - w > 1.5 * w && r > 1.4 && !(c.taper > 0)) {
+            if (plan::second_wall(c, r, w)) {
                 Path inner = lp.paths.back();
                 inner.points = loop(cx, cy, r - w * 0.9, w);
                 lp.paths.push_back(std::move(inner));
