@@ -185,23 +185,74 @@ struct Lattice {
     }
 };
 
-// Travels over one layer's fresh support (the box holds its beads): support
-// is drawn, grown by the clearance, as it is printed; a chain of travel
-// moves between two extrusions counts once where, after leaving the support
-// it may start from, it comes near fresh support low enough to touch it and
-// then leaves it again (reaching the next bead is no crossing).
+// The beads of one layer's support printed so far, in 1 mm buckets over
+// the layer's support box: the gap from a point to the nearest of them,
+// measured exactly (a raster's cells blur a 0.2 mm clearance by a third).
+class FreshBeads {
+public:
+    FreshBeads(const layers::Bounds& box, double reach)
+        : x0_(box.min_x), y0_(box.min_y), reach_(reach),
+          nx_(std::max(1, static_cast<int>(std::ceil((box.max_x - box.min_x) / kBucket)))),
+          ny_(std::max(1, static_cast<int>(std::ceil((box.max_y - box.min_y) / kBucket)))),
+          buckets_(static_cast<std::size_t>(nx_) * ny_) {}
+
+    void add(const layers::Segment& sg) {
+        const int i0 = bucket_x(std::min(sg.x0, sg.x1) - sg.width / 2), i1 = bucket_x(std::max(sg.x0, sg.x1) + sg.width / 2);
+        const int j0 = bucket_y(std::min(sg.y0, sg.y1) - sg.width / 2), j1 = bucket_y(std::max(sg.y0, sg.y1) + sg.width / 2);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) buckets_[static_cast<std::size_t>(j) * nx_ + i].push_back(&sg);
+        empty_ = false;
+    }
+
+    // Distance from (x, y) to the nearest bead's edge, or `reach_` when
+    // none is nearer.
+    double gap(double x, double y) const {
+        double best = reach_;
+        if (empty_) return best;
+        const int i0 = bucket_x(x - reach_), i1 = bucket_x(x + reach_);
+        const int j0 = bucket_y(y - reach_), j1 = bucket_y(y + reach_);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                for (const layers::Segment* sg : buckets_[static_cast<std::size_t>(j) * nx_ + i])
+                    best = std::min(best, distance(x, y, *sg) - sg->width / 2);
+        return best;
+    }
+
+private:
+    static constexpr double kBucket = 1.0;
+    int bucket_x(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0_) / kBucket)), 0, nx_ - 1); }
+    int bucket_y(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0_) / kBucket)), 0, ny_ - 1); }
+    static double distance(double px, double py, const layers::Segment& s) {
+        const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, l2 = dx * dx + dy * dy;
+        const double t = l2 > 0 ? std::clamp(((px - s.x0) * dx + (py - s.y0) * dy) / l2, 0.0, 1.0) : 0.0;
+        return std::hypot(px - (s.x0 + dx * t), py - (s.y0 + dy * t));
+    }
+    double x0_, y0_, reach_;
+    int nx_, ny_;
+    std::vector<std::vector<const layers::Segment*>> buckets_;
+    bool empty_ = true;
+};
+
+// Travels over one layer's fresh support (the box holds its beads), by
+// METHOD's letter: support counts from when it is printed; a chain of
+// travel moves between two extrusions counts once where, after leaving the
+// support it may start from (more than the clearance away), it comes back
+// within the clearance of fresh support low enough to touch it and then
+// leaves it again (reaching the next bead is no crossing). Points along a
+// travel are taken every kTravelStep, as splice's writer takes them.
 // Each crossing found is also kept in `found` (with its side: true for the
 // added support), to be judged against the layer's islands once known.
 void count_travels(const gcode::Program& program, const layers::Layer& layer, const std::vector<SupportOwner>& owner,
-                   const Lattice& lat, const layers::Bounds& box, const StandingOptions& o, StandingReport& r,
+                   const layers::Bounds& box, const StandingOptions& o, StandingReport& r,
                    std::vector<std::pair<TravelCrossing, bool>>& found) {
+    constexpr double kTravelStep = 0.1;
     found.clear();
-    const double pad = o.travel_clearance + 2 * lat.cell;
-    const int i0 = lat.col(box.min_x - pad), j0 = lat.row(box.min_y - pad);
-    layers::BitGrid keep_added = lat.grid(i0, j0, lat.col(box.max_x + pad) - i0 + 1, lat.row(box.max_y + pad) - j0 + 1);
-    layers::BitGrid keep_original = keep_added;
-    const double bx0 = lat.ox + i0 * lat.cell, by0 = lat.oy + j0 * lat.cell;
-    const double bx1 = bx0 + keep_added.width() * lat.cell, by1 = by0 + keep_added.height() * lat.cell;
+    double wmax = 0;
+    for (const layers::Segment& sg : layer.segments)
+        if (owner[sg.move] != SupportOwner::None) wmax = std::max(wmax, double(sg.width));
+    const double reach = o.travel_clearance + wmax / 2 + kTravelStep;
+    FreshBeads added(box, reach), original(box, reach);
+    const double bx0 = box.min_x - reach, by0 = box.min_y - reach, bx1 = box.max_x + reach, by1 = box.max_y + reach;
     auto first = std::lower_bound(program.moves.begin(), program.moves.end(), layer.first_line,
                                   [](const gcode::Move& m, std::uint32_t line) { return m.line < line; });
     std::size_t p = 0;  // the layer's segments follow its moves in order
@@ -227,11 +278,8 @@ void count_travels(const gcode::Program& program, const layers::Layer& layer, co
         if (m.kind == gcode::MoveKind::Extrude) {
             left = pend_a = pend_o = done_a = done_o = false;  // a new chain after this bead
             while (p < layer.segments.size() && layer.segments[p].move < mi) ++p;
-            if (p < layer.segments.size() && layer.segments[p].move == mi && owner[mi] != SupportOwner::None) {
-                const layers::Segment& sg = layer.segments[p];
-                (owner[mi] == SupportOwner::Added ? keep_added : keep_original)
-                    .draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 2 * o.travel_clearance);
-            }
+            if (p < layer.segments.size() && layer.segments[p].move == mi && owner[mi] != SupportOwner::None)
+                (owner[mi] == SupportOwner::Added ? added : original).add(layer.segments[p]);
             continue;
         }
         if (m.kind != gcode::MoveKind::Travel) continue;  // retractions and wipes keep the chain
@@ -243,12 +291,11 @@ void count_travels(const gcode::Program& program, const layers::Layer& layer, co
             confirm();
             continue;
         }
-        const int n = std::max(1, static_cast<int>(std::ceil(len / lat.cell)));
+        const int n = std::max(1, static_cast<int>(std::ceil(len / kTravelStep)));
         for (int i = 0; i <= n; ++i) {
             const double t = static_cast<double>(i) / n;
             const double x = m.x0 + dx * t, y = m.y0 + dy * t, z = m.z0 + (m.z1 - m.z0) * t;
-            const int ci = lat.col(x) - i0, cj = lat.row(y) - j0;
-            const bool a = keep_added.get(ci, cj), b = keep_original.get(ci, cj);
+            const bool a = added.gap(x, y) <= o.travel_clearance, b = original.gap(x, y) <= o.travel_clearance;
             if (!left) {
                 left = !a && !b;
                 continue;
@@ -322,8 +369,7 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
         }
         if (sup.empty()) continue;
 
-        count_travels(program, layer, owner, lattice, {x0 - wmax / 2, y0 - wmax / 2, x1 + wmax / 2, y1 + wmax / 2}, o, r,
-                      crossings);
+        count_travels(program, layer, owner, {x0 - wmax / 2, y0 - wmax / 2, x1 + wmax / 2, y1 + wmax / 2}, o, r, crossings);
 
         // Islands: the layer's support drawn on a grid around it.
         const double pad = wmax / 2 + 2 * cell;

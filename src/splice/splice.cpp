@@ -171,9 +171,11 @@ private:
 
     // Whether the straight travel from here to (x, y) comes back within
     // kFreshClearance of a bead this block printed after leaving them (it
-    // leaves the bead it starts on freely). With a margin both ways, as the
+    // leaves the bead it starts on freely: along a straight line the gap to
+    // the loop it leaves only grows). With a margin both ways, as the
     // validator measures on its raster: left once more than kFreshLeft clear,
-    // back once the gap has fallen again to within clearance plus margin.
+    // back once the gap falls again, to within clearance plus margin. Erring
+    // this way costs a lift; the other way, a knocked column.
     bool crosses_fresh(double x, double y) const {
         if (printed_.empty()) return false;
         const double len = std::hypot(x - x_, y - y_);
@@ -184,7 +186,7 @@ private:
             double gap = 1e9;
             for (const Bead& b : printed_) gap = std::min(gap, distance_to_segment(px, py, b) - b.width / 2);
             widest = std::max(widest, gap);
-            if (widest > kFreshLeft && gap <= kFreshClearance + kFreshMargin && gap < widest - kFreshMargin) return true;
+            if (widest > kFreshLeft && gap <= kFreshClearance + kFreshMargin && gap < widest - kFreshFall) return true;
         }
         return false;
     }
@@ -204,8 +206,11 @@ private:
     static constexpr double kFreshClearance = 0.2;
     static constexpr double kFreshLift = 0.2;
     static constexpr double kFreshStep = 0.1;
+    // Margins for the file's rounded coordinates and the validator's own
+    // points along the travel.
     static constexpr double kFreshLeft = 0.15;
     static constexpr double kFreshMargin = 0.05;
+    static constexpr double kFreshFall = 1e-4;
 
     void move_z(double z) {
         out_ += "G1";

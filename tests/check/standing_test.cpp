@@ -315,3 +315,37 @@ TEST(Standing, TravelOverWeakSupport) {
     ASSERT_EQ(r.standing.added.first_travels.size(), 1u);
     EXPECT_NEAR(r.standing.added.first_travels[0].y, 101.2, 0.15);  // 0.2 mm beyond the wall's outer edge at 101.0
 }
+
+TEST(Standing, TravelClearanceIsMeasuredExactly) {
+    // A model bead at y 90, a support bead 0.4 mm wide along y = y0 (its
+    // edge at y0 + 0.2), a model bead at y 105 (a new chain), then a travel
+    // down to a point `gap` above the support's edge and back up: it comes
+    // within METHOD's 0.2 mm and leaves again at 0.19 and 0.195 mm, not at
+    // 0.205 or 0.21 mm, wherever the bead lies against a raster's 0.1 mm
+    // cells (the raster this replaced missed some and invented others).
+    auto scene = [](double y0, double gap) {
+        SynthGcode g = start();
+        g.layer(0.2);
+        g.type("External perimeter");
+        g.travel(100, 90);  // fixes the bounds, and any raster's cells with them
+        g.extrude(110, 90);
+        g.type("Support material");
+        g.width(0.4);
+        g.travel(100, y0);
+        g.extrude(110, y0);
+        g.type("External perimeter");
+        g.travel(100, 105);
+        g.extrude(110, 105);
+        g.travel(104, 103);
+        g.travel(105, y0 + 0.2 + gap);
+        g.travel(106, 103);
+        g.extrude(107, 103);
+        return run(g, 0);
+    };
+    for (double y0 : {100.0, 100.02, 100.04, 100.06, 100.08}) {
+        EXPECT_EQ(scene(y0, 0.19).standing.added.travels, 1) << y0;
+        EXPECT_EQ(scene(y0, 0.195).standing.added.travels, 1) << y0;
+        EXPECT_EQ(scene(y0, 0.205).standing.added.travels, 0) << y0;
+        EXPECT_EQ(scene(y0, 0.21).standing.added.travels, 0) << y0;
+    }
+}
