@@ -121,6 +121,7 @@ struct LayerGrids {
     int index = -1;
     layers::BitGrid model, support;
     layers::BitGrid skirt;  // skirt and brim: material, but it encloses nothing
+    layers::BitGrid seeds;  // the model's beads that are no walls (layers::draw_hole_seed)
     // With --original, the support the original itself holds (a file sliced
     // with support on): it holds what rests on it like any support, but its
     // own faults are the original's, reported apart.
@@ -470,12 +471,14 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         g.support = proto;
         g.skirt = proto;
         g.slicer = proto;
+        g.seeds = proto;
         for (const auto& sg : stack.layers[index].segments) {
             layers::BitGrid& into = is_slicer_support(out.moves[sg.move]) ? g.slicer
                                     : is_support_move(out.moves[sg.move]) ? g.support
                                     : sg.role == gcode::Role::Skirt       ? g.skirt
                                                                           : g.model;
             into.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            if (&into == &g.model) layers::draw_hole_seed(g.seeds, sg);
         }
         return cache.emplace(index, std::move(g)).first->second;
     };
@@ -530,9 +533,12 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         // original's own support is measured the same way, and apart.
         auto collisions = [&](layers::BitGrid LayerGrids::*which) {
             layers::BitGrid coll = here.*which;
-            // Against the filled footprint: support inside the part (in a
-            // hole of its sparse infill) can never be removed.
-            coll &= here.model.filled().dilated(std::max(0.0, o.xy_gap - o.resolution));
+            // Against the part's footprint: support inside the part (in a
+            // hole of its sparse infill) can never be removed; in a cavity
+            // of the model (layers::draw_hole_seed) it keeps the gap.
+            layers::BitGrid part = here.model;
+            part |= here.model.holes_with(here.seeds);
+            coll &= part.dilated(std::max(0.0, o.xy_gap - o.resolution));
             if (!coll.any()) return coll;
             // A cell is a tip when its support ends here or on the next
             // layer: only cells with support on both layers above count

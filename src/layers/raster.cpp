@@ -550,7 +550,11 @@ BitGrid BitGrid::empty_like() const {
 
 BitGrid BitGrid::enclosed(const BitGrid& seeds) const { return enclosed(seeds, {0, 0, nx_ - 1, ny_ - 1}); }
 
-BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const {
+BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const { return flood_holes(seeds, box, false); }
+
+BitGrid BitGrid::holes_with(const BitGrid& seeds) const { return flood_holes(seeds, {0, 0, nx_ - 1, ny_ - 1}, true); }
+
+BitGrid BitGrid::flood_holes(const BitGrid& seeds, const CellBox& box, bool whole) const {
     // Only the regions the seeds are in are flooded, so a layer with a few
     // candidate cells costs a few small floods, not a whole-grid fill. The
     // seeds of an enclosed flood's spans go straight to out.
@@ -574,13 +578,19 @@ BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const {
                         std::uint64_t m = ~std::uint64_t{0};
                         if (v == sp.a >> 6) m &= ~std::uint64_t{0} << (sp.a & 63);
                         if (v == sp.b >> 6) m &= ~std::uint64_t{0} >> (63 - (sp.b & 63));
-                        out.words_[row + v] |= seeds.words_[row + v] & m;
+                        out.words_[row + v] |= whole ? m : seeds.words_[row + v] & m;
                     }
                 }
             }
         }
     }
     return out;
+}
+
+void draw_hole_seed(BitGrid& seeds, const Segment& sg) {
+    using gcode::Role;
+    if (sg.role == Role::ExternalPerimeter || sg.role == Role::Perimeter || sg.role == Role::OverhangPerimeter) return;
+    seeds.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 3 * seeds.cell());
 }
 
 BitGrid make_grid(const LayerStack& stack, double cell, double margin) {

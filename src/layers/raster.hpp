@@ -116,6 +116,8 @@ public:
     BitGrid enclosed(const BitGrid& seeds) const;
     // The same for seeds that lie within box (whole words).
     BitGrid enclosed(const BitGrid& seeds, const CellBox& box) const;
+    // The holes enclosed by set cells that hold a cell of `seeds`, whole.
+    BitGrid holes_with(const BitGrid& seeds) const;
     std::size_t count() const;
     bool any() const;
     bool any(const CellBox& box) const;  // within box (whole words)
@@ -124,6 +126,8 @@ public:
     const std::vector<std::uint64_t>& words() const { return words_; }
 
 private:
+    // enclosed() (the seeds' cells) or holes_with() (whole holes).
+    BitGrid flood_holes(const BitGrid& seeds, const CellBox& box, bool whole) const;
     // floor(v), when v is clear of integers by kSureCells (and fits an int
     // with that margin).
     static bool sure_floor(double v, int& out) {
@@ -146,6 +150,14 @@ inline constexpr double kMaxGridCells = 1e8;
 // The grid for a stack: its bounds padded by `margin` mm on every side.
 // Throws scaffold::Error beyond kMaxGridCells.
 BitGrid make_grid(const LayerStack& stack, double cell, double margin);
+
+// A hole of the model's footprint beside a bead that is no wall (infill,
+// gap fill, a bead of unknown role) lies inside the part; one walled by
+// perimeters alone is a cavity of the model (a dome's inside, a cabin's
+// room), where support may stand and pass. Draws a model bead into the
+// seeds of the part's holes (for holes_with) if it is no wall, grown by
+// 1.5 cells each side to reach the hole's cells beside it.
+void draw_hole_seed(BitGrid& seeds, const Segment& sg);
 // Draws every segment of the layer.
 void draw_layer(BitGrid& grid, const Layer& layer);
 // The cells draw_layer (or drawing any part of its segments at their

@@ -66,7 +66,9 @@ Cavities::Cavities(const layers::LayerStack& stack, const Obstacles& obstacles) 
                 any = true;
             }
         if (!any) continue;
-        layers::BitGrid holes = obstacles.footprint(order[n]);
+        // Every hole the material encloses, cavities of the model included
+        // (the obstacles' footprint fills only the part's infill holes).
+        layers::BitGrid holes = material.filled();
         holes.subtract(material);
         const float z = static_cast<float>(layer.z);
         // Per coarse cell: any material, else whether every fine cell of it

@@ -15,17 +15,19 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
         z_.push_back(layer.z);
         h_.push_back(layer.height);
         below_.push_back(layer.below);
-        // The model's filled footprint: a hole between sparse infill lines is
-        // inside the part, no room for a pillar. A skirt or brim loop encloses
+        // The part's footprint: a hole between sparse infill lines is inside
+        // the part, no room for a pillar; a cavity of the model is open to
+        // support (layers::draw_hole_seed). A skirt or brim loop encloses
         // nothing (filled, it would wall off the whole bed around the part).
-        layers::BitGrid g = proto, skirt = proto;
+        layers::BitGrid g = proto, skirt = proto, seeds = proto;
         bool has_skirt = false;
         for (const layers::Segment& sg : layer.segments) {
-            bool is_skirt = sg.role == gcode::Role::Skirt;
+            const bool is_skirt = sg.role == gcode::Role::Skirt;
             has_skirt = has_skirt || is_skirt;
             (is_skirt ? skirt : g).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+            if (!is_skirt) layers::draw_hole_seed(seeds, sg);
         }
-        g = g.filled();
+        g |= g.holes_with(seeds);
         if (has_skirt) g |= skirt;
         model_.push_back(std::move(g));
     }

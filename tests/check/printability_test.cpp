@@ -96,19 +96,30 @@ TEST(Check, PillarThroughTheModelCollides) {
 }
 
 TEST(Check, PillarInsideTheSparseInfillCollides) {
-    // A 20 mm box of walls only (a hollow, like sparse infill's holes): a
-    // pillar in the middle keeps clear of every bead but is inside the part.
-    SynthGcode g;
-    for (int l = 1; l <= 20; ++l) {
-        g.layer(0.2 * l);
-        g.type("External perimeter");
-        g.rect_outline(100, 100, 120, 120);
-        g.type("Support material");
-        g.rect_outline(109, 109, 111, 111);
-    }
-    auto r = run(g);
-    EXPECT_FALSE(r.ok());
-    EXPECT_GT(r.collision_mm2, 10.0);
+    // A 20 mm hole of a part's sparse infill: a pillar in the middle keeps
+    // clear of every bead but is inside the part. The same hole walled by
+    // perimeters alone is a cavity of the model (a cup, a dome's inside):
+    // the pillar keeps the gap, no collision.
+    auto scene = [](const char* walls) {
+        SynthGcode g;
+        for (int l = 1; l <= 20; ++l) {
+            g.layer(0.2 * l);
+            g.type(walls);
+            g.rect_outline(100, 100, 120, 120);
+            g.type("Support material");
+            g.rect_outline(109, 109, 111, 111);
+        }
+        return run(g);
+    };
+    auto infill = scene("Internal infill");
+    EXPECT_FALSE(infill.ok());
+    // 18 layers of the 2 mm square loop (the top two are its tips), a ring
+    // between squares 2.45 and 1.55 mm across: 18 x (6.0025 - 2.4025) =
+    // 64.8 mm^2, less the cells whose centres fall just outside.
+    EXPECT_GT(infill.collision_mm2, 50.0);
+    EXPECT_LE(infill.collision_mm2, 64.8);
+    auto cavity = scene("External perimeter");
+    EXPECT_EQ(cavity.collision_mm2, 0.0) << check::report_text(cavity);
 }
 
 TEST(Check, SupportPrintedTwiceIsMeasured) {

@@ -19,9 +19,10 @@ void outline(layers::Layer& l, double x0, double y0, double x1, double y1, gcode
         l.segments.push_back({xs[k], ys[k], xs[k + 1], ys[k + 1], 0.45f, role, static_cast<std::uint32_t>(l.segments.size())});
 }
 
-// A hollow 20 mm box (walls only, like the holes of sparse infill) on 0.2 mm
-// layers up to 4 mm, a skirt loop 5 mm around it on the first layer.
-layers::LayerStack hollow_box() {
+// A hollow 20 mm box on 0.2 mm layers up to 4 mm, a skirt loop 5 mm around
+// it on the first layer. Its outline printed as sparse infill (`role`) is a
+// hole of the part's infill; printed as a wall, a cavity of the model.
+layers::LayerStack hollow_box(gcode::Role role = gcode::Role::InternalInfill) {
     layers::LayerStack st;
     for (int i = 0; i < 20; ++i) {
         layers::Layer l;
@@ -30,7 +31,7 @@ layers::LayerStack hollow_box() {
         l.below = i - 1;
         l.on_bed = i == 0;
         if (i == 0) outline(l, 95, 95, 125, 125, gcode::Role::Skirt);
-        outline(l, 100, 100, 120, 120, gcode::Role::ExternalPerimeter);
+        outline(l, 100, 100, 120, 120, role);
         st.layers.push_back(l);
     }
     st.bounds = {95, 95, 125, 125};
@@ -48,6 +49,20 @@ TEST(Obstacles, InsideThePartIsNoRoomOutsideTheSkirtLoopIs) {
     // Between the box and the skirt: clear (the skirt encloses nothing).
     EXPECT_TRUE(obs.disc_clear(0, 97.5, 110, 1.0));
     EXPECT_TRUE(obs.disc_clear(10, 90, 110, 1.0));
+}
+
+TEST(Obstacles, ACavityOfTheModelIsRoom) {
+    // The same box walled by perimeters alone (a dome's inside, a cabin):
+    // room for a pillar 10 mm from every wall, and a pillar down to the bed
+    // inside it, not standing on the outline of the hole.
+    Settings s;
+    auto st = hollow_box(gcode::Role::ExternalPerimeter);
+    const plan::Obstacles inside(st, s);
+    EXPECT_TRUE(inside.disc_clear(10, 110, 110, 1.0));
+    EXPECT_FALSE(inside.disc_clear(10, 110, 100.5, 1.0));  // the wall itself
+    EXPECT_EQ(inside.model_below(19, 110, 110, 1.0), -1);
+    const plan::Obstacles infill(hollow_box(), s);
+    EXPECT_EQ(infill.model_below(19, 110, 110, 1.0), 18);
 }
 
 TEST(Obstacles, NoPillarDownThroughAHollowPart) {
