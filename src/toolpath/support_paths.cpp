@@ -177,6 +177,7 @@ void order_paths(std::vector<Path>& paths) {
 // The spur itself is a dangling end of the loop (under 1 mm past its reach).
 void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridges, double z,
                const layers::Layer& bar_layer, const Settings& s) {
+    constexpr double kRoundLoop = 0.01;  // mm: a loop's vertices all this close to one circle
     const double w = s.support_width;
     const double reach = bar_layer.height * std::tan(s.overhang_angle_deg * std::numbers::pi / 180) + s.resolution / 2;
     const std::size_t n_loops = paths.size();
@@ -196,8 +197,15 @@ void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridge
             for (std::size_t k = 0; k + 1 < p.points.size(); ++k) cx += p.points[k].x, cy += p.points[k].y;
             cx /= static_cast<double>(p.points.size() - 1);
             cy /= static_cast<double>(p.points.size() - 1);
-            double rc = 0;
-            for (const Point& q : p.points) rc = std::max(rc, std::hypot(q.x - cx, q.y - cy));
+            double rc = 0, rmin = 1e300;
+            for (const Point& q : p.points) {
+                rc = std::max(rc, std::hypot(q.x - cx, q.y - cy));
+                rmin = std::min(rmin, std::hypot(q.x - cx, q.y - cy));
+            }
+            // Only a column's own round loop: the outline of crossing loops
+            // merged into one is no circle about its vertices' mean, and a
+            // spur from that mean's circle stood off it, on nothing.
+            if (rc - rmin > kRoundLoop) continue;
             const double outer = rc + p.width / 2;
             // Where the loop's centre falls along the bar, and how far aside.
             const double t = (cx - br.x0) * ux + (cy - br.y0) * uy;

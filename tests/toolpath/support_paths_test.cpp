@@ -116,3 +116,27 @@ TEST(SupportPaths, ACrowdOfCrossingLoopsGivesClosedPaths) {
     }
     EXPECT_LT(lp->paths.size(), 20u);  // the crowd merged
 }
+
+TEST(SupportPaths, ASpurOnlyFromARoundLoop) {
+    // A bar at z 3 passing 1.3 mm beside a lone pillar at (30, 20) and
+    // beside two crossing pillars at (20, 20) and (21.2, 20), printed as
+    // the outline of their union. The lone loop gets a spur under the bar
+    // on the layer beneath it (z 3.0); the outline gets none: a spur from
+    // the circle about its vertices' mean would stand off it, on nothing.
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold sc;
+    sc.columns = {pillar(20, 20, 5), pillar(21.2, 20, 5), pillar(30, 20, 5)};
+    sc.bridges.push_back({10, 21.3, 35, 21.3, 3.0, {}, 0, 0});
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 14);  // z = 3.0
+    ASSERT_NE(lp, nullptr);
+    int spurs = 0;
+    for (const auto& p : lp->paths) {
+        if (p.points.size() != 2 || p.kind != toolpath::PathKind::Pillar) continue;
+        ++spurs;
+        EXPECT_NEAR(p.points.front().x, 30, 1e-6);  // straight out from the lone loop
+        EXPECT_GT(p.points.back().y, p.points.front().y);
+    }
+    EXPECT_EQ(spurs, 1);
+}
