@@ -81,7 +81,7 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
         std::string_view t = p.line_text(i);
         if (t.empty() || t[0] != ';' ||
             (t.find("ilament used") == std::string_view::npos && t.find("ilament cost") == std::string_view::npos &&
-             t.substr(0, 10) != ";MATERIAL:"))
+             t.find("total filament") == std::string_view::npos && t.substr(0, 10) != ";MATERIAL:"))
             continue;
         std::string s(t);
         auto value_after = [&](std::string_view key, double& v, std::size_t& at) {
@@ -101,6 +101,12 @@ void update_totals(const gcode::Program& p, double add_mm, double diameter, std:
             repl = s.substr(0, at) + fixed(v + add_g, 2);
         else if (add_cost > 0 && (value_after("; total filament cost = ", v, at) || value_after("; filament cost = ", v, at)))
             repl = s.substr(0, at) + fixed(v + add_cost, 2);
+        // Bambu Studio's header block (what Moonraker and the printer read);
+        // its "volume [cm^3]" holds mm^3.
+        else if (value_after("; total filament length [mm] : ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm, 2);
+        else if (value_after("; total filament volume [cm^3] : ", v, at))
+            repl = s.substr(0, at) + fixed(v + add_cm3 * 1000, 2);
+        else if (add_g > 0 && value_after("; total filament weight [g] : ", v, at)) repl = s.substr(0, at) + fixed(v + add_g, 2);
         else if (value_after(";MATERIAL:", v, at))  // UltiGCode: mm^3 of the first extruder
             repl = s.substr(0, at) + std::to_string(std::lround(v + add_cm3 * 1000));
         else if (value_after(";Filament used: ", v, at)) repl = s.substr(0, at) + fixed(v + add_mm / 1000, 5) + "m";

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 
 #include "gcode/archive.hpp"
@@ -165,6 +166,32 @@ TEST(Gcode3mfCli, OrcaHookOnTheTemporaryPlainPlate) {
     EXPECT_TRUE(out == load_file(dir + "/plain.gcode"));
     EXPECT_EQ(out.substr(0, out.find('\n')), "; HEADER_BLOCK_START");
     EXPECT_FALSE(fs::exists(dir + "/plate_1.gcode.3mf"));
+}
+
+TEST(Gcode3mfCli, HeaderBlockTotalsRaisedByTheSupport) {
+    // Bambu Studio's header block is what Moonraker and the printer read
+    // (its "volume [cm^3]" holds mm^3): each total grows by the support's
+    // filament, as the "; filament used" lines at the end do.
+    if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
+    const std::string dir = dir_for("header_totals");
+    const std::string plate = bambu_gcode({});
+    write_file(dir + "/plate.gcode", plate);
+    ASSERT_EQ(run("scaffold", "-q " + dir + "/plate.gcode -o " + dir + "/out.gcode"), 0);
+    const std::string out = load_file(dir + "/out.gcode");
+    auto value = [](const std::string& text, const std::string& key) {
+        const std::size_t at = text.find(key);
+        return at == std::string::npos ? -1.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
+    };
+    const double support = value(out, "; scaffold: support filament used [mm] = ");
+    ASSERT_GT(support, 10.0);
+    const double area = std::numbers::pi * 0.875 * 0.875;  // mm^2 of 1.75 mm filament
+    EXPECT_NEAR(value(out, "; total filament length [mm] : "), value(plate, "; total filament length [mm] : ") + support,
+                0.011);
+    EXPECT_NEAR(value(out, "; total filament volume [cm^3] : "),
+                value(plate, "; total filament volume [cm^3] : ") + support * area, 0.011);
+    EXPECT_NEAR(value(out, "; total filament weight [g] : "),
+                value(plate, "; total filament weight [g] : ") + support * area / 1000 * 1.26, 0.011);
+    EXPECT_NEAR(value(out, "; filament used [mm] = "), value(out, "; total filament length [mm] : "), 0.011);
 }
 
 TEST(Gcode3mfCli, VasePlateRefusesTheWholeFile) {
