@@ -136,7 +136,11 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
                 if (p.points.size() >= 4) merged.push_back(std::move(p));
             };
             add(poly.outer());
-            for (const auto& hole : poly.inners()) add(hole);
+            // A hole narrower than a bead is covered by the beads around it:
+            // its outline would be a speck, moving from layer to layer with
+            // the slanted loops that make it, over nothing.
+            for (const auto& hole : poly.inners())
+                if (std::abs(bg::area(hole)) >= proto.width * proto.width) add(hole);
         }
     }
     std::vector<Path> kept;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "plan/pillars.hpp"
 #include "support/stacks.hpp"
@@ -139,4 +140,22 @@ TEST(SupportPaths, ASpurOnlyFromARoundLoop) {
         EXPECT_GT(p.points.back().y, p.points.front().y);
     }
     EXPECT_EQ(spurs, 1);
+}
+
+TEST(SupportPaths, AHoleNarrowerThanABeadIsNotPrinted) {
+    // Three crossing loops around a point each just misses: their union's
+    // centre lines leave a hole a few hundredths of a mm across there,
+    // which the beads around it cover. Only the union's outline is printed.
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    const double rc = plan::loop_shape(s.pillar_radius, s.support_width).centre_radius, d = rc + 0.02;
+    plan::Scaffold sc;
+    for (int k = 0; k < 3; ++k) {
+        const double a = 2 * std::numbers::pi * k / 3 + 0.3;
+        sc.columns.push_back(pillar(20 + d * std::cos(a), 20 + d * std::sin(a), 5));
+    }
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);
+    ASSERT_NE(lp, nullptr);
+    EXPECT_EQ(lp->paths.size(), 1u);
 }
