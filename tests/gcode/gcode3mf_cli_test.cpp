@@ -36,7 +36,9 @@ std::string dir_for(const std::string& test) {
 
 // Runs a program of the build with `args` (a shell line); its stderr in *err.
 int run(const std::string& program, const std::string& args, std::string* err = nullptr, const std::string& env = "") {
-    const std::string err_file = ::testing::TempDir() + "/gcode3mf_stderr.txt";
+    // One per test: ctest runs the tests of this file side by side.
+    const std::string err_file = ::testing::TempDir() + "/gcode3mf_stderr_" +
+                                 ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt";
     std::string cmd = env + " " + std::string(SCAFFOLD_BINARY_DIR) + "/" + program + " " + args + " 2> " + err_file;
     int rc = std::system(cmd.c_str());
     if (err) *err = load_file(err_file);
