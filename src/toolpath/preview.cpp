@@ -17,19 +17,45 @@ std::string f(double v) {
     return b;
 }
 
+const char* column_colour(const plan::Column& c) {
+    switch (c.base) {
+        case plan::Base::Bridge: return "#e08000";
+        case plan::Base::Model: return "#2a9d8f";
+        case plan::Base::Column: return "#3b82f6";
+        default: return "#1d4ed8";
+    }
+}
+
+// A bar that ties weak columns (METHOD's Standing rule) apart from one
+// that carries points.
+const char* bar_colour(const plan::Bridge& br) { return br.brace ? "#7b2cbf" : "#d62828"; }
+
 }  // namespace
 
 std::string preview_svg(const layers::LayerStack& stack, const plan::Scaffold& scaffold, const SupportPaths& paths,
                         const Settings& s) {
     const layers::Bounds& b = stack.bounds;
+    // The view holds the model and the scaffold beside it (feet, rafts and
+    // helper pillars reach past the model).
+    layers::Bounds v = b;
+    auto take = [&](double x, double y, double r) {
+        v.min_x = std::min(v.min_x, x - r), v.max_x = std::max(v.max_x, x + r);
+        v.min_y = std::min(v.min_y, y - r), v.max_y = std::max(v.max_y, y + r);
+    };
+    for (const auto& c : scaffold.columns) {
+        const double r = std::max({plan::column_radius_at(c, c.z0, s), c.foot_radius, c.raft_size / 2 * 1.5});
+        take(c.x0, c.y0, r);
+        take(c.x1, c.y1, c.radius);
+    }
+    for (const auto& br : scaffold.bridges) take(br.x0, br.y0, 1), take(br.x1, br.y1, 1);
     double zmax = 0;
     for (const auto& l : stack.layers) zmax = std::max(zmax, l.z);
-    const double scale = std::clamp(600.0 / std::max(b.max_x - b.min_x, 1.0), 2.0, 20.0);
-    const double pad = 20, w = (b.max_x - b.min_x) * scale, hf = zmax * scale, ht = (b.max_y - b.min_y) * scale;
-    const double W = w + 2 * pad, H = hf + ht + 4 * pad;
-    auto X = [&](double x) { return pad + (x - b.min_x) * scale; };
+    const double scale = std::clamp(600.0 / std::max(v.max_x - v.min_x, 1.0), 2.0, 20.0);
+    const double pad = 20, w = (v.max_x - v.min_x) * scale, hf = zmax * scale, ht = (v.max_y - v.min_y) * scale;
+    const double W = w + 2 * pad, H = hf + ht + 4 * pad + 14;
+    auto X = [&](double x) { return pad + (x - v.min_x) * scale; };
     auto Zf = [&](double z) { return pad + hf - z * scale; };               // front view, z up
-    auto Yt = [&](double y) { return 3 * pad + hf + (b.max_y - y) * scale; };  // top view, y up
+    auto Yt = [&](double y) { return 3 * pad + hf + (v.max_y - y) * scale; };  // top view, y up
     std::string o;
     o += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + f(W) + "\" height=\"" + f(H) + "\" viewBox=\"0 0 " + f(W) +
          " " + f(H) + "\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -70,12 +96,11 @@ std::string preview_svg(const layers::LayerStack& stack, const plan::Scaffold& s
         }
         for (const auto& [x, z] : left) pts += f(X(x)) + "," + f(Zf(z)) + " ";
         for (auto it = right.rbegin(); it != right.rend(); ++it) pts += f(X(it->first)) + "," + f(Zf(it->second)) + " ";
-        const char* colour = c.base == plan::Base::Bridge ? "#e08000" : (c.base == plan::Base::Model ? "#2a9d8f" : "#1d4ed8");
-        if (c.base == plan::Base::Column) colour = "#3b82f6";
+        const char* colour = column_colour(c);
         o += "<polygon fill=\"" + std::string(colour) + "\" fill-opacity=\"0.8\" points=\"" + pts + "\"/>\n";
     }
     for (const auto& br : scaffold.bridges)
-        o += "<line stroke=\"#d62828\" stroke-width=\"" + f(std::max(0.4 * scale, 1.0)) + "\" x1=\"" + f(X(br.x0)) +
+        o += "<line stroke=\"" + std::string(bar_colour(br)) + "\" stroke-width=\"" + f(std::max(0.4 * scale, 1.0)) + "\" x1=\"" + f(X(br.x0)) +
              "\" y1=\"" + f(Zf(br.z)) + "\" x2=\"" + f(X(br.x1)) + "\" y2=\"" + f(Zf(br.z)) + "\"/>\n";
     // Top view: model outline of every 10th layer, then every support path once.
     o += "<g fill=\"none\" stroke=\"#bbbbbb\" stroke-width=\"0.5\">\n";
@@ -86,21 +111,21 @@ std::string preview_svg(const layers::LayerStack& stack, const plan::Scaffold& s
                      f(Yt(sg.y1)) + "\"/>\n";
     o += "</g>\n";
     for (const auto& c : scaffold.columns) {
-        const char* colour = c.base == plan::Base::Bridge ? "#e08000" : (c.base == plan::Base::Model ? "#2a9d8f" : "#1d4ed8");
-        if (c.base == plan::Base::Column) colour = "#3b82f6";
+        const char* colour = column_colour(c);
         o += "<line stroke=\"" + std::string(colour) + "\" stroke-width=\"" + f(2 * c.radius * scale) +
              "\" stroke-linecap=\"round\" stroke-opacity=\"0.6\" x1=\"" + f(X(c.x0)) + "\" y1=\"" + f(Yt(c.y0)) +
              "\" x2=\"" + f(X(c.x1)) + "\" y2=\"" + f(Yt(c.y1)) + "\"/>\n";
     }
     for (const auto& br : scaffold.bridges)
-        o += "<line stroke=\"#d62828\" stroke-width=\"" + f(scale) + "\" x1=\"" + f(X(br.x0)) + "\" y1=\"" + f(Yt(br.y0)) +
+        o += "<line stroke=\"" + std::string(bar_colour(br)) + "\" stroke-width=\"" + f(scale) + "\" x1=\"" + f(X(br.x0)) + "\" y1=\"" + f(Yt(br.y0)) +
              "\" x2=\"" + f(X(br.x1)) + "\" y2=\"" + f(Yt(br.y1)) + "\"/>\n";
     std::size_t n_paths = 0;
     for (const auto& lp : paths.layers) n_paths += lp.paths.size();
-    o += "<text x=\"" + f(pad) + "\" y=\"" + f(H - 6) + "\" font-family=\"sans-serif\" font-size=\"11\">" +
+    o += "<text x=\"" + f(pad) + "\" y=\"" + f(H - 20) + "\" font-family=\"sans-serif\" font-size=\"11\">" +
          std::to_string(scaffold.columns.size()) + " columns, " + std::to_string(scaffold.bridges.size()) +
-         " bridges, " + std::to_string(n_paths) +
-         " support paths. Blue: pillar on the bed, teal: on the model, orange: from a bridge, red: bridge.</text>\n";
+         " bridges, " + std::to_string(n_paths) + " support paths.</text>\n";
+    o += "<text x=\"" + f(pad) + "\" y=\"" + f(H - 6) + "\" font-family=\"sans-serif\" font-size=\"11\">" +
+         "Blue: pillar on the bed, teal: on the model, orange: from a bridge, red: bridge, purple: brace.</text>\n";
     o += "</svg>\n";
     return o;
 }
