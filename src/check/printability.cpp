@@ -129,26 +129,8 @@ struct LayerGrids {
 };
 
 // A straight run of consecutive segments of one extrusion path, as samples
-// along its centre line.
-struct Sample {
-    double x, y, s;  // position and arc length along the piece
-    int seg;         // index into the layer's segments
-    bool held;
-};
-
-// Whether a held sample lies within `reach` mm of the piece's end (from_end)
-// or start, measured along it.
-bool dangling_reach(const std::vector<Sample>& piece, bool from_end, double reach) {
-    if (piece.empty()) return false;
-    if (from_end) {
-        for (std::size_t k = piece.size(); k-- > 0 && piece.back().s - piece[k].s <= reach;)
-            if (piece[k].held) return true;
-    } else {
-        for (std::size_t k = 0; k < piece.size() && piece[k].s - piece.front().s <= reach; ++k)
-            if (piece[k].held) return true;
-    }
-    return false;
-}
+// along its centre line (seg: index into the layer's segments).
+using Sample = layers::PieceSample;
 
 void add_issue(std::vector<LayerIssue>& v, LayerIssue issue, int keep) {
     v.push_back(issue);
@@ -646,14 +628,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                 piece_ux = len > 0 ? dx / len : 0;
                 piece_uy = len > 0 ? dy / len : 0;
             }
-            auto& piece = pieces.back();
-            double s0 = piece.empty() ? 0 : piece.back().s;
-            int n = std::max(1, static_cast<int>(std::ceil(len / o.resolution)));
-            for (int i = piece.empty() ? 0 : 1; i <= n; ++i) {
-                double t = static_cast<double>(i) / n;
-                double x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-                piece.push_back({x, y, s0 + len * t, static_cast<int>(k), held_grid.get(held_grid.col(x), held_grid.row(y))});
-            }
+            layers::sample_segment(sg, static_cast<std::uint32_t>(k), held_grid, o.resolution, pieces.back());
         }
         layers::BitGrid seeds = proto;
         bool any_unheld = false;
@@ -674,32 +649,14 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
         std::vector<std::pair<char, char>> joint_held(pieces.size(), {0, 0});
         for (std::size_t q = 1; q < pieces.size(); ++q) {
             if (!piece_joined[q]) continue;
-            joint_held[q].first = dangling_reach(pieces[q - 1], true, o.dangling_end);
-            joint_held[q - 1].second = dangling_reach(pieces[q], false, o.dangling_end);
+            joint_held[q].first = layers::held_near_end(pieces[q - 1], true, o.dangling_end);
+            joint_held[q - 1].second = layers::held_near_end(pieces[q], false, o.dangling_end);
         }
         for (std::size_t q = 0; q < pieces.size(); ++q) {
             if (joint_held[q].first) pieces[q].front().held = true;
             if (joint_held[q].second) pieces[q].back().held = true;
         }
-        for (std::size_t q = 0; q < pieces.size(); ++q) {
-            auto& piece = pieces[q];
-            std::size_t i = 0;
-            while (i < piece.size()) {
-                if (piece[i].held) { ++i; continue; }
-                std::size_t j = i;
-                while (j < piece.size() && !piece[j].held) ++j;
-                bool start_held = i > 0, end_held = j < piece.size();
-                double s_a = start_held ? piece[i - 1].s : piece[i].s;
-                double s_b = end_held ? piece[j].s : piece[j - 1].s;
-                double span = s_b - s_a;
-                bool ok = (start_held && end_held && span <= piece_limit[q] &&
-                           layers::run_crosses(below, piece, i - 1, j)) ||
-                          ((start_held != end_held) && span <= o.dangling_end);
-                if (ok)
-                    for (std::size_t k = i; k < j; ++k) piece[k].held = true;
-                i = j;
-            }
-        }
+        for (std::size_t q = 0; q < pieces.size(); ++q) layers::hold_runs(pieces[q], below, piece_limit[q], o.dangling_end);
         // (c) near a support contact tip below.
         bool still = false;
         for (const auto& piece : pieces)

@@ -35,4 +35,46 @@ bool leaves_across(const BitGrid& footprint, double hx, double hy, double px, do
     return d_walked - d_held >= need;
 }
 
+void sample_segment(const Segment& sg, std::uint32_t seg, const BitGrid& held, double step, std::vector<PieceSample>& p) {
+    // Differences of the floats, as every caller always took them.
+    const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
+    const double s0 = p.empty() ? 0 : p.back().s;
+    const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+    for (int i = p.empty() ? 0 : 1; i <= n; ++i) {
+        const double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
+        int ci, cj;
+        if (!held.sure_cell(x, y, ci, cj)) ci = held.col(x), cj = held.row(y);
+        p.push_back({x, y, s0 + len * t, seg, held.get(ci, cj)});
+    }
+}
+
+bool held_near_end(const std::vector<PieceSample>& p, bool at_end, double reach) {
+    if (p.empty()) return false;
+    if (at_end) {
+        for (std::size_t k = p.size(); k-- > 0 && p.back().s - p[k].s <= reach;)
+            if (p[k].held) return true;
+    } else {
+        for (std::size_t k = 0; k < p.size() && p[k].s - p.front().s <= reach; ++k)
+            if (p[k].held) return true;
+    }
+    return false;
+}
+
+void hold_runs(std::vector<PieceSample>& p, const BitGrid& footprint, double max_span, double dangling_end) {
+    for (std::size_t i = 0; i < p.size();) {
+        if (p[i].held) { ++i; continue; }
+        std::size_t j = i;
+        while (j < p.size() && !p[j].held) ++j;
+        const bool start_held = i > 0, end_held = j < p.size();
+        bool ok = false;
+        if (start_held && end_held)
+            ok = p[j].s - p[i - 1].s <= max_span && run_crosses(footprint, p, i - 1, j);
+        else if (start_held != end_held)  // a dangling end, from its last held sample
+            ok = (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= dangling_end;
+        if (ok)
+            for (std::size_t k = i; k < j; ++k) p[k].held = true;
+        i = j;
+    }
+}
+
 }  // namespace scaffold::layers

@@ -6,15 +6,31 @@
 // that footprint grows by at least half the length walked (it crosses the
 // edge at 30 degrees or more). A wall running along the edge outside its
 // reach -- the outer wall of a steep overhang -- crosses no gap.
+//
+// The piece walk itself (sample a straight piece, hold its spanned runs and
+// short dangling ends) lives here once: the detector, the planner's bar
+// check and the validator each call it, so a bar the planner keeps is a bar
+// the validator holds, sample for sample.
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
+#include "layers/layer_stack.hpp"
 #include "layers/raster.hpp"
 
 namespace scaffold::layers {
 
 // How far a held end's test walks into the run (METHOD.md).
 inline constexpr double kCrossingWalk = 1.0;
+// A bead's unheld end this short is held (METHOD's rule (b)).
+inline constexpr double kDanglingEnd = 1.0;
+
+// One sample of a straight piece's centre line.
+struct PieceSample {
+    double x, y, s;     // position and arc length along the piece
+    std::uint32_t seg;  // the caller's index of the segment it lies on
+    bool held;          // by rule (a), then by the walk
+};
 
 // Distance in mm from (x, y) to the nearest set cell of `footprint` (to the
 // cell's square, so 0 inside one), or `limit` when none is nearer.
@@ -53,5 +69,23 @@ bool run_crosses(const BitGrid& footprint, const std::vector<Sample>& p, std::si
     point_at(p, p[b].s - walk, x, y);
     return leaves_across(footprint, p[b].x, p[b].y, x, y, walk);
 }
+
+// Appends segment `sg`'s centre-line samples, at most `step` apart, to the
+// piece `p` (continuing its arc length; a segment after the first starts at
+// the sample before), each held where `held` is set. Taken from the
+// segment's float coordinates as the reader stores them: callers that build
+// their own segments (the bar check) get the validator's very samples.
+void sample_segment(const Segment& sg, std::uint32_t seg, const BitGrid& held, double step, std::vector<PieceSample>& p);
+
+// Whether a held sample lies within `reach` of the piece's end (at_end) or
+// start, along it: the corner into a neighbouring piece is held there.
+bool held_near_end(const std::vector<PieceSample>& p, bool at_end, double reach = kDanglingEnd);
+
+// METHOD's rule (b) on one straight piece: marks held each unheld run that
+// is held at both ends, at most `max_span` long and crossing the gap
+// (run_crosses), and each dangling end of at most `dangling_end`. The runs
+// left unheld are the piece's overhang.
+void hold_runs(std::vector<PieceSample>& p, const BitGrid& footprint, double max_span,
+               double dangling_end = kDanglingEnd);
 
 }  // namespace scaffold::layers

@@ -133,28 +133,21 @@ bool joined(const layers::Segment& a, const layers::Segment& b) {
     return b.move == a.move + 1 && std::abs(b.x0 - a.x1) < 1e-3f && std::abs(b.y0 - a.y1) < 1e-3f;
 }
 
-struct Sample {
-    double x, y, s;  // centre-line position and arc length along the piece
-    float width;
-    bool held;
-    std::size_t seg;  // the segment it lies on (the one from the sample before)
-};
+using Sample = layers::PieceSample;  // seg: index into the layer's segments
 
 // Polyline through samples [a, b] at their beads' width: one line per
 // segment, not one per sample step (the steps of a segment are collinear
 // and of one width, so the set of cells is the same).
-void draw_samples(const std::vector<Sample>& p, std::size_t a, std::size_t b, layers::BitGrid& out) {
-    if (a == b) out.draw_disc(p[a].x, p[a].y, p[a].width / 2);
+void draw_samples(const std::vector<layers::Segment>& segs, const std::vector<Sample>& p, std::size_t a, std::size_t b,
+                  layers::BitGrid& out) {
+    if (a == b) out.draw_disc(p[a].x, p[a].y, segs[p[a].seg].width / 2);
     for (std::size_t k = a + 1; k <= b;) {
         std::size_t e = k;
         while (e < b && p[e + 1].seg == p[k].seg) ++e;
-        out.draw_segment(p[k - 1].x, p[k - 1].y, p[e].x, p[e].y, p[k].width);
+        out.draw_segment(p[k - 1].x, p[k - 1].y, p[e].x, p[e].y, segs[p[k].seg].width);
         k = e + 1;
     }
 }
-
-// A bead's unheld end this short is held (METHOD.md's rule (b)).
-constexpr double kDanglingEnd = 1.0;
 
 }  // namespace
 
@@ -192,18 +185,7 @@ bool all_samples_held(const std::vector<layers::Segment>& segs, std::size_t firs
 void piece_samples(const std::vector<layers::Segment>& segs, std::size_t first, std::size_t last,
                    const layers::BitGrid& held, double step, std::vector<Sample>& p) {
     p.clear();
-    for (std::size_t k = first; k <= last; ++k) {
-        const layers::Segment& sg = segs[k];
-        double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
-        double s0 = p.empty() ? 0 : p.back().s;
-        int n = std::max(1, static_cast<int>(std::ceil(len / step)));
-        for (int i = p.empty() ? 0 : 1; i <= n; ++i) {
-            double t = static_cast<double>(i) / n, x = sg.x0 + dx * t, y = sg.y0 + dy * t;
-            int ci, cj;
-            if (!held.sure_cell(x, y, ci, cj)) ci = held.col(x), cj = held.row(y);
-            p.push_back({x, y, s0 + len * t, sg.width, held.get(ci, cj), k});
-        }
-    }
+    for (std::size_t k = first; k <= last; ++k) layers::sample_segment(segs[k], static_cast<std::uint32_t>(k), held, step, p);
 }
 
 // Whether a held sample lies within a dangling end (1 mm) of the piece's
@@ -212,14 +194,7 @@ bool held_near_end(const std::vector<layers::Segment>& segs, std::size_t first, 
                    const layers::BitGrid& held, double step, bool at_end, std::vector<Sample>& p) {
     if (all_samples_held(segs, first, last, held, step)) return true;
     piece_samples(segs, first, last, held, step, p);
-    if (at_end) {
-        for (std::size_t k = p.size(); k-- > 0 && p.back().s - p[k].s <= kDanglingEnd;)
-            if (p[k].held) return true;
-    } else {
-        for (std::size_t k = 0; k < p.size() && p[k].s - p.front().s <= kDanglingEnd; ++k)
-            if (p[k].held) return true;
-    }
-    return false;
+    return layers::held_near_end(p, at_end);
 }
 
 // Segments [first, last] (one straight piece of one path): an unheld run of
@@ -235,18 +210,14 @@ bool straight_piece(const std::vector<layers::Segment>& segs, std::size_t first,
     piece_samples(segs, first, last, held, step, p);
     if (first_held) p.front().held = true;
     if (last_held) p.back().held = true;
+    layers::hold_runs(p, footprint, max_span);
     bool drew = false;
     for (std::size_t i = 0; i < p.size();) {
         if (p[i].held) { ++i; continue; }
         std::size_t j = i;
         while (j < p.size() && !p[j].held) ++j;
-        bool start_held = i > 0, end_held = j < p.size();
-        bool spanned = start_held && end_held && p[j].s - p[i - 1].s <= max_span && layers::run_crosses(footprint, p, i - 1, j);
-        bool short_end = start_held != end_held && (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
-        if (!spanned && !short_end) {
-            draw_samples(p, i, j - 1, over);
-            drew = true;
-        }
+        draw_samples(segs, p, i, j - 1, over);
+        drew = true;
         i = j;
     }
     return drew;
