@@ -8,9 +8,9 @@
 // reach -- the outer wall of a steep overhang -- crosses no gap.
 //
 // The piece walk itself (sample a straight piece, hold its spanned runs and
-// short dangling ends) lives here once: the detector, the planner's bar
-// check and the validator each call it, so a bar the planner keeps is a bar
-// the validator holds, sample for sample.
+// short dangling ends) lives here once: the detector and the validator each
+// call it. (toolpath/bar_check, the planner's check of its bars, still
+// walks a bar its own way.)
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -73,8 +73,8 @@ bool run_crosses(const BitGrid& footprint, const std::vector<Sample>& p, std::si
 // Appends segment `sg`'s centre-line samples, at most `step` apart, to the
 // piece `p` (continuing its arc length; a segment after the first starts at
 // the sample before), each held where `held` is set. Taken from the
-// segment's float coordinates as the reader stores them: callers that build
-// their own segments (the bar check) get the validator's very samples.
+// segment's float coordinates as the reader stores them, so every caller
+// gets the validator's very samples.
 void sample_segment(const Segment& sg, std::uint32_t seg, const BitGrid& held, double step, std::vector<PieceSample>& p);
 
 // Whether a held sample lies within `reach` of the piece's end (at_end) or
