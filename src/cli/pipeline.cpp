@@ -260,8 +260,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     if (log.should_log(spdlog::level::trace)) {
         for (const plan::Column& c : scaffold.columns)
             log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "
-                      "base {}, point {}",
-                      c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius, c.taper, c.hold_z, static_cast<int>(c.base), c.point);
+                      "cap {:.2f}, base {}, point {}",
+                      c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius, c.taper, c.hold_z, c.max_radius,
+                      static_cast<int>(c.base), c.point);
         for (const plan::Bridge& b : scaffold.bridges)
             log.trace("bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{}", b.x0, b.y0, b.x1, b.y1, b.z, b.brace ? ", brace" : "");
     }

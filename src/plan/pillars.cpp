@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 
@@ -24,6 +25,7 @@ LoopShape loop_shape(double r, double width) {
 
 double column_radius_at(const Column& c, double z, const Settings& s) {
     double r = c.radius + (c.taper > 0 && z < c.hold_z ? c.taper * (c.hold_z - z) : 0.0);
+    if (c.max_radius > 0) r = std::max(c.radius, std::min(r, c.max_radius));
     if (c.contact_z > 0 && s.tip_length > 0) {
         double t = (c.contact_z - z) / s.tip_length;  // 0 at the contact, 1 where the tip starts
         if (t < 1) r = s.tip_radius + (c.radius - s.tip_radius) * std::clamp(t, 0.0, 1.0);
@@ -87,7 +89,47 @@ constexpr double kMaxWander = 15.0;
 
 struct Step {
     double x, y, z;
+    double cap = 0;  // the column's max_radius on this layer (0: none)
 };
+
+// Radius of the column on a step of its path.
+double step_radius(const Column& c, const Step& st, const Settings& s) {
+    Column capped = c;
+    capped.max_radius = st.cap;
+    return column_radius_at(capped, st.z, s);
+}
+
+// Largest radius in [lo, hi] (to 0.01 mm) whose disc, grown by `extra`,
+// is clear of the model on `layer`; lo is known clear.
+double widest_clear(const Obstacles& obs, int layer, double x, double y, double lo, double hi, double extra) {
+    for (int i = 0; i < 7 && hi - lo > 0.01; ++i) {
+        const double mid = (lo + hi) / 2;
+        (obs.disc_clear(layer, x, y, mid + extra) ? lo : hi) = mid;
+    }
+    return std::floor(lo * 100) / 100;
+}
+
+// A loop rests on the one below while no point of it moves out by more than
+// the shift limit; a capped radius changes by at most this share of it per
+// layer, so that a step aside on the same layer still leaves a margin.
+constexpr double kCapChange = 0.2;
+
+// Caps limited to change by kCapChange of the shift limit per layer, from
+// the capped layers outwards (only ever lowered: the clearance found holds).
+void smooth_caps(std::vector<Step>& path, const Column& proto, const layers::LayerStack& stack, int top_layer,
+                 const Settings& s) {
+    if (std::none_of(path.begin(), path.end(), [](const Step& st) { return st.cap > 0; })) return;
+    const double none = std::numeric_limits<double>::infinity();
+    std::vector<double> cap(path.size());
+    for (std::size_t i = 0; i < path.size(); ++i) cap[i] = path[i].cap > 0 ? path[i].cap : none;
+    const double d = kCapChange * loop_shift_limit(stack.layers[top_layer].height, s);
+    for (std::size_t i = 1; i < cap.size(); ++i) cap[i] = std::min(cap[i], cap[i - 1] + d);
+    for (std::size_t i = cap.size() - 1; i > 0; --i) cap[i - 1] = std::min(cap[i - 1], cap[i] + d);
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        const double r = column_radius_at(proto, path[i].z, s);
+        path[i].cap = cap[i] < r - 1e-9 ? std::max(cap[i], proto.radius) : 0.0;
+    }
+}
 
 // Walks the column down from its top layer, stepping aside where the model
 // comes too close. Returns the centre per layer (top first), with the base.
@@ -109,7 +151,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             // Stand on a trunk whose loop here holds our loop above (its
             // centre line within the reach of the trunk's bead).
             const Step& up = path.back();
-            const double rc_up = loop_shape(column_radius_at(proto, up.z, s), s.support_width).centre_radius;
+            const double rc_up = loop_shape(step_radius(proto, up, s), s.support_width).centre_radius;
             const double hold = loop_shift_limit(height_above, s);
             for (const Trunks::Loop& o : trunks->at(l))
                 // (A trunk sized for less than what stands on this column
@@ -118,6 +160,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                     (!(target_stiffness(s) > 0) || o.hold_z >= proto.hold_z - 1e-6)) {
                     proto.base = Base::Column;
                     proto.z0 = layer.z;
+                    smooth_caps(path, proto, stack, top_layer, s);
                     return true;
                 }
             // Otherwise lean towards the nearest trunk within reach, as far
@@ -161,8 +204,34 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 clear = obs.disc_clear(l, cx, cy, need);
             }
         }
+        double cap = 0;
+        if (!clear && !first && proto.taper > 0) {
+            // METHOD's Standing rule: a column hugging a wall is as wide as
+            // the gap allows on each layer, not narrow all the way down:
+            // here, or a step aside, wherever it is widest.
+            Column plain = proto;
+            plain.taper = 0;
+            const double r_plain = column_radius_at(plain, layer.z, s), extra = need - r;
+            const double step = loop_shift_limit(layer.height, s);
+            double best = -1, bx = cx, by = cy;
+            for (int k = -1; k < 8; ++k) {
+                if (k >= 0 && wander + step > kMaxWander) break;
+                const double a = k * std::numbers::pi / 4;
+                const double px = k < 0 ? cx : cx + step * std::cos(a), py = k < 0 ? cy : cy + step * std::sin(a);
+                if (r_plain >= r - 0.01 || !obs.disc_clear(l, px, py, r_plain + extra)) continue;
+                const double w = widest_clear(obs, l, px, py, r_plain, r, extra);
+                if (w > best + 0.01) { best = w; bx = px; by = py; }
+            }
+            if (best > 0) {
+                if (bx != cx || by != cy) wander += step;
+                cx = bx;
+                cy = by;
+                cap = std::max(proto.radius, best);
+                clear = true;
+            }
+        }
         if (clear) {
-            path.push_back({cx, cy, layer.z});
+            path.push_back({cx, cy, layer.z, cap});
             height_above = layer.height;
             continue;
         }
@@ -171,7 +240,8 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         // column, or under only part of it, is a collision: try elsewhere.
         // On the first layer only a loop held all round: what blocks the way
         // there is mostly a skirt or brim line, which holds only what lies on it.
-        const double r_last = column_radius_at(proto, path.empty() ? layer.z : path.back().z, s);
+        smooth_caps(path, proto, stack, top_layer, s);
+        const double r_last = path.empty() ? column_radius_at(proto, layer.z, s) : step_radius(proto, path.back(), s);
         const double rest_reach = stack.layers[top_layer].height * slope * 0.8;
         if (first ||
             (layer.on_bed ? !loop_held(obs, l, cx, cy, loop_shape(r_last, s.support_width).centre_radius, rest_reach)
@@ -183,17 +253,18 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
     }
     proto.base = Base::Bed;
     proto.z0 = 0;
+    smooth_caps(path, proto, stack, top_layer, s);
     return true;
 }
 
 // The per-layer centres as columns, bottom first: a vertical column while
 // the centre stays, a one-layer slanted column where it steps.
 std::vector<Column> columns_of(const Column& proto, const std::vector<Step>& path) {
-    std::vector<Step> v;  // vertices, bottom up
+    std::vector<Step> v;  // vertices, bottom up, each with the cap of the piece ending there
     v.push_back({path.back().x, path.back().y, proto.z0});
     for (std::size_t i = path.size() - 1; i > 0; --i) {
         const Step &lo = path[i], &hi = path[i - 1];
-        if (lo.x == hi.x && lo.y == hi.y) continue;
+        if (lo.x == hi.x && lo.y == hi.y && lo.cap == hi.cap) continue;
         if (v.back().z != lo.z) v.push_back(lo);
         v.push_back(hi);
     }
@@ -203,6 +274,7 @@ std::vector<Column> columns_of(const Column& proto, const std::vector<Step>& pat
         Column c = proto;
         c.x0 = v[i].x; c.y0 = v[i].y; c.z0 = v[i].z;
         c.x1 = v[i + 1].x; c.y1 = v[i + 1].y; c.z1 = v[i + 1].z;
+        c.max_radius = v[i + 1].cap;
         if (i > 0) c.base = Base::Column;
         if (i + 2 < v.size()) c.top = Top::Column;
         out.push_back(c);
@@ -385,9 +457,17 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         // Where the widened column finds no way down, less widened ones, then
         // a straight one without a neck, then the plain one with its neck,
         // weaker (braced or reported by scaffold-check), rather than none.
-        for (double stiff : {1.0, 0.5, 0.25, 0.0})
-            if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, stiff, thin_above))
-                return chain;
+        // Under a bar end a neck may be all that fits at the top: a widened
+        // column with a neck before the plain one.
+        for (bool neck : {thin_above, true}) {
+            const int below = stack.layers[overhang_layer].below;
+            if (neck && !thin_above && !(top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6)) break;
+            for (double stiff : {1.0, 0.5, 0.25, 0.0})
+                if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold,
+                                                    give, stiff, neck))
+                    return chain;
+            if (thin_above) break;
+        }
     return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, -1.0, thin_above);
 }
 

@@ -6,6 +6,7 @@
 #include "layers/layer_stack.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "plan/stiffness.hpp"
 #include "support/stacks.hpp"
 
 using namespace scaffold;
@@ -227,4 +228,60 @@ TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
     EXPECT_NEAR(base.z0, 4.0, 1e-6);
     EXPECT_NEAR(base.x0, 110, 1e-9);
     EXPECT_NEAR(base.y0, 110, 1e-9);
+}
+
+// METHOD's Standing rule: a column passing a narrow place keeps its taper
+// above and below it and is only as narrow as the place allows there. A
+// point at z 40 over (50, 50); between z 10.2 and 12 two walls stand 2.5 mm
+// either side of it (their beads' edges 2.275 mm away), too close for the
+// widened column (2 mm plus the taper for 40 mm, about 1.2 mm more by then),
+// and no step aside gets it out of the slot. The column goes straight down
+// with its full taper, capped by the walls on those layers only.
+TEST(PlanPillars, AColumnIsAsWideAsTheRoomOnEachLayer) {
+    Settings s;  // --min-stiffness 2
+    const layers::LayerStack st = test::stack_of(
+        200,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i >= 50 && i < 60) {
+                test::bead(l, 47.5, 40, 47.5, 60, gcode::Role::Perimeter);
+                test::bead(l, 52.5, 40, 52.5, 60, gcode::Role::Perimeter);
+            }
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(50, 50, 199, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain);
+    ASSERT_FALSE(chain->empty());
+    EXPECT_EQ(chain->front().base, plan::Base::Bed);
+    const double full = plan::taper_for(s.pillar_radius, chain->front().hold_z, plan::target_stiffness(s), 0,
+                                        s.support_width, s.modulus);
+    ASSERT_GT(full, 0.02);
+    auto radius_at = [&](double z) {
+        for (const plan::Column& c : *chain)
+            if (z > c.z0 + 1e-6 && z <= c.z1 + 1e-6) {
+                EXPECT_EQ(c.x0, 50);  // straight down: no step aside
+                EXPECT_EQ(c.taper, full);
+                return plan::column_radius_at(c, z, s);
+            }
+        ADD_FAILURE() << "no piece at z " << z;
+        return 0.0;
+    };
+    const double step = 0.2 * plan::loop_shift_limit(0.2, s) + full * 0.2 + 1e-9;
+    double below = radius_at(st.layers[0].z);
+    for (int l = 1; l < 180; ++l) {  // below the tip
+        const double z = st.layers[l].z, r = radius_at(z);
+        // Clear of the walls, never under the plain radius, and a loop rests
+        // on the one below.
+        EXPECT_TRUE(obs.disc_clear(l, 50, 50, r + s.xy_gap)) << "z " << z;
+        EXPECT_GE(r, s.pillar_radius - 1e-9);
+        EXPECT_LE(std::abs(r - below), step) << "z " << z;
+        below = r;
+    }
+    // Full width away from the walls: 5 mm under them, and from 5 mm above.
+    const double hold = chain->front().hold_z;
+    EXPECT_NEAR(radius_at(5.0), s.pillar_radius + full * (hold - 5.0), 1e-6);
+    EXPECT_NEAR(radius_at(17.0), s.pillar_radius + full * (hold - 17.0), 1e-6);
+    EXPECT_LT(radius_at(11.0), 2.275 - s.xy_gap + s.resolution);  // (the raster's edge)
+    EXPECT_LT(radius_at(11.0), s.pillar_radius + full * (hold - 11.0) - 0.3);
 }
