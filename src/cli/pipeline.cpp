@@ -233,6 +233,15 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::vector<plan::Bridge> forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
     bool bars_held = false;  // the last plan's bars checked and all held
+    // Should the rounds run out, each plan still keeping a few such bars: the
+    // plan with the fewest that carry points (brace bars are left out below);
+    // the last plan is no better than the others.
+    struct Kept {
+        std::size_t bad = SIZE_MAX;
+        overhang::SupportPoints points;
+        plan::Scaffold scaffold;
+        toolpath::SupportPaths paths;
+    } kept;
     for (int round = 0;; ++round) {
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
@@ -250,9 +259,25 @@ Outcome run(const Request& req, spdlog::logger& log) {
         paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
         // A bar whose line rule (b) does not hold as built (it passes along
         // the edge of a column it does not rest on): plan again without it.
-        if (round == kBarRounds) break;
         const std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (log.should_log(spdlog::level::trace))
+            for (std::size_t i : bad) {
+                const plan::Bridge& b = scaffold.bridges[i];
+                log.trace("round {}: bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{} not held as built", round, b.x0,
+                          b.y0, b.x1, b.y1, b.z, b.brace ? ", brace" : "");
+            }
         if ((bars_held = bad.empty())) break;
+        const auto carrying = static_cast<std::size_t>(
+            std::count_if(bad.begin(), bad.end(), [&](std::size_t i) { return !scaffold.bridges[i].brace; }));
+        if (carrying < kept.bad) kept = {carrying, points, scaffold, paths};
+        if (round == kBarRounds) {
+            if (kept.bad < carrying) {
+                points = std::move(kept.points);
+                scaffold = std::move(kept.scaffold);
+                paths = std::move(kept.paths);
+            }
+            break;
+        }
         for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
         log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
                   1000 * std::chrono::duration<double>(Clock::now() - time.t).count());
@@ -271,6 +296,12 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // bars were checked and all held.)
     for (int k = 0; k < 3 && !bars_held; ++k) {
         std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (log.should_log(spdlog::level::trace))
+            for (std::size_t i : bad) {
+                const plan::Bridge& b = scaffold.bridges[i];
+                log.trace("last plan: bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{} not held as built", b.x0, b.y0,
+                          b.x1, b.y1, b.z, b.brace ? ", brace" : "");
+            }
         std::erase_if(bad, [&](std::size_t i) { return !scaffold.bridges[i].brace; });
         if (bad.empty()) break;
         for (auto it = bad.rbegin(); it != bad.rend(); ++it) scaffold.bridges.erase(scaffold.bridges.begin() + static_cast<long>(*it));

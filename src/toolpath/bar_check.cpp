@@ -12,55 +12,74 @@ namespace scaffold::toolpath {
 namespace {
 
 constexpr double kZEps = 1e-6;
-constexpr double kDanglingEnd = 1.0;  // METHOD's rule (b)
-constexpr double kMargin = 3.0;       // grid beyond the line: reach and the crossing walk
-
-struct Sample {
-    double x, y, s;
-    bool held;
-};
+// Grid beyond the line: the reach, and the crossing test's search (up to
+// 3 mm from a sample plus a cell).
+constexpr double kMargin = 4.0;
 
 struct Bead {
-    double x0, y0, x1, y1, width;
+    float x0, y0, x1, y1, width;
+    bool rim;      // bounds the footprint (not a skirt loop, as in the validator)
+    bool support;  // a contact tip where it lies under the model of the bar's layer
 };
 
-// Whether the line a -> b on a layer is held by `beads` beneath it.
-bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, double reach, double cell,
-               double bridge_limit) {
+// A coordinate as the validator reads it back: written with 3 decimals
+// (splice), parsed, stored as a float (layers::Segment). The crossing test
+// is decided on samples of the written line; a bar judged on its exact
+// coordinates was held here and not there (figure.slic3r13, z 17.2).
+float written(double v) { return static_cast<float>(std::round(v * 1000) / 1000); }
+
+// Whether the line a -> b on a layer is held by `beads` beneath it: rule
+// (a) with the holes they enclose, (b), then (c) near a contact tip (support
+// beneath, under the layer's own model `here`), in the validator's order.
+bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, const std::vector<Bead>& here,
+               double reach, double cell, double bridge_limit, double point_radius, std::vector<layers::PieceSample>& p) {
     // On the validator's lattice (multiples of the cell from the origin, as
     // make_grid lays it): a bar grazing a loop is judged cell for cell alike.
     const double x0 = std::floor((std::min(a.x, b.x) - kMargin) / cell) * cell, x1 = std::max(a.x, b.x) + kMargin;
     const double y0 = std::floor((std::min(a.y, b.y) - kMargin) / cell) * cell, y1 = std::max(a.y, b.y) + kMargin;
-    layers::BitGrid footprint(x0, y0, x1, y1, cell), held = footprint;
+    layers::BitGrid footprint(x0, y0, x1, y1, cell), held = footprint, tips = footprint;
+    auto outside = [&](const Bead& d) {
+        return std::max(d.x0, d.x1) < x0 - reach || std::min(d.x0, d.x1) > x1 + reach ||
+               std::max(d.y0, d.y1) < y0 - reach || std::min(d.y0, d.y1) > y1 + reach;
+    };
+    bool any_tip = false;
     for (const Bead& d : beads) {
-        if (std::max(d.x0, d.x1) < x0 - reach || std::min(d.x0, d.x1) > x1 + reach ||
-            std::max(d.y0, d.y1) < y0 - reach || std::min(d.y0, d.y1) > y1 + reach)
-            continue;
-        footprint.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
+        if (outside(d)) continue;
+        if (d.rim) footprint.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
         held.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width + 2 * reach);
+        if (d.support) tips.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
+        any_tip |= d.support;
     }
-    const double len = std::hypot(b.x - a.x, b.y - a.y);
-    const int n = std::max(1, static_cast<int>(std::ceil(len / cell)));
-    std::vector<Sample> p;
-    p.reserve(n + 1);
-    for (int i = 0; i <= n; ++i) {
-        const double t = static_cast<double>(i) / n, x = a.x + (b.x - a.x) * t, y = a.y + (b.y - a.y) * t;
-        p.push_back({x, y, len * t, held.get(held.col(x), held.row(y))});
-    }
-    for (std::size_t i = 0; i < p.size();) {
-        if (p[i].held) { ++i; continue; }
-        std::size_t j = i;
-        while (j < p.size() && !p[j].held) ++j;
-        const bool start_held = i > 0, end_held = j < p.size();
-        bool ok = false;
-        if (start_held && end_held)
-            ok = p[j].s - p[i - 1].s <= bridge_limit && layers::run_crosses(footprint, p, i - 1, j);
-        else if (start_held != end_held)
-            ok = (start_held ? p[j - 1].s - p[i - 1].s : p[j].s - p[i].s) <= kDanglingEnd;
-        if (!ok) return false;
-        i = j;
-    }
-    return true;
+    layers::Segment line;
+    line.x0 = written(a.x), line.y0 = written(a.y), line.x1 = written(b.x), line.y1 = written(b.y);
+    p.clear();
+    layers::sample_segment(line, 0, held, cell, p);
+    auto all_held = [&] { return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; }); };
+    if (all_held()) return true;
+    // Over a hole the beads beneath enclose (the middle of a pillar's loop
+    // under the bar's end): held, as the validator fills the footprint. A
+    // hole open beyond this grid is taken as open (judged stricter here).
+    layers::BitGrid seeds = footprint;
+    seeds.clear();
+    for (const layers::PieceSample& q : p)
+        if (!q.held) seeds.set(seeds.col(q.x), seeds.row(q.y));
+    const layers::BitGrid enclosed = footprint.enclosed(seeds);
+    for (layers::PieceSample& q : p)
+        if (!q.held) q.held = enclosed.get(enclosed.col(q.x), enclosed.row(q.y));
+    layers::hold_runs(p, footprint, bridge_limit);
+    if (all_held() || !any_tip || here.empty()) return all_held();
+    // Rule (c): the model of this layer within a cell of support beneath
+    // rests on a tip, which holds what lies within the point radius of it.
+    layers::BitGrid model = footprint;
+    model.clear();
+    for (const Bead& d : here)
+        if (!outside(d)) model.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
+    tips &= model.dilated(cell);
+    if (!tips.any()) return false;
+    const layers::BitGrid tip_reach = tips.dilated(point_radius);
+    for (layers::PieceSample& q : p)
+        if (!q.held) q.held = tip_reach.get(tip_reach.col(q.x), tip_reach.row(q.y));
+    return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; });
 }
 
 }  // namespace
@@ -71,7 +90,8 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
     if (scaffold.bridges.empty()) return out;
     const double slope = std::tan(settings.overhang_angle_deg * std::numbers::pi / 180);
     const double h_nom = settings.layer_height;
-    std::vector<Bead> beads;
+    std::vector<Bead> beads, here;
+    std::vector<layers::PieceSample> samples;
     for (std::size_t bi = 0; bi < scaffold.bridges.size(); ++bi) {
         const plan::Bridge& br = scaffold.bridges[bi];
         bool bad = false;
@@ -84,19 +104,24 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
             beads.clear();
             for (int k : layer.beneath)
                 for (const layers::Segment& sg : stack.layers[k].segments)
-                    beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width});
+                    beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt, false});
+            here.clear();
+            for (const layers::Segment& sg : layer.segments)
+                if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role))
+                    here.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, true, false});
             for (const LayerPaths& under : paths.layers) {
                 const double dz = z - stack.layers[under.layer].z;
                 if (dz <= kZEps || dz > 3 * h_nom + kZEps) continue;
                 for (const Path& path : under.paths)
                     for (std::size_t i = 1; i < path.points.size(); ++i)
-                        beads.push_back({path.points[i - 1].x, path.points[i - 1].y, path.points[i].x, path.points[i].y,
-                                         path.width});
+                        beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y),
+                                         written(path.points[i].x), written(path.points[i].y),
+                                         static_cast<float>(path.width), true, true});
             }
             const double reach = layer.height * slope + settings.resolution / 2;
             for (const std::vector<Point>& line : bar_lines(br, settings.support_width, settings.pillar_radius))
-                if (!line_held(line.front(), line.back(), beads, reach, settings.resolution,
-                               settings.marked_bridge_limit)) {
+                if (!line_held(line.front(), line.back(), beads, here, reach, settings.resolution,
+                               settings.marked_bridge_limit, settings.point_radius, samples)) {
                     bad = true;
                     break;
                 }

@@ -5,7 +5,8 @@
 // held end across the edge of the footprint (layers::run_crosses), or be a
 // dangling end of at most 1 mm. A bar passing beside a column it does not
 // rest on (along the column's edge, within reach) fails: the pipeline plans
-// again without it.
+// again without it. The walk is the validator's own (layers/crossing), on the
+// line's coordinates as written, so what passes here passes there.
 #include <cstddef>
 #include <vector>
 
