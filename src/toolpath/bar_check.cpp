@@ -66,7 +66,23 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     const layers::BitGrid enclosed = footprint.enclosed(seeds);
     for (layers::PieceSample& q : p)
         if (!q.held) q.held = enclosed.get(enclosed.col(q.x), enclosed.row(q.y));
-    layers::hold_runs(p, footprint, bridge_limit);
+    // METHOD's crossing test depends on where a held end lies to the sample:
+    // a run whose held end lies a sample or two further on may no longer
+    // leave it across the footprint's edge (the validator's reach holds a
+    // sample more beside a bead's end than this grid). So a bar is held by
+    // (b) here only if it still is with each held stretch grown by up to
+    // three samples.
+    bool firm = true;
+    std::vector<layers::PieceSample> grown;
+    for (std::size_t g = 1; g <= 3 && firm; ++g) {
+        grown = p;
+        for (std::size_t i = 0; i < p.size(); ++i)
+            if (p[i].held)
+                for (std::size_t k = i >= g ? i - g : 0; k <= std::min(p.size() - 1, i + g); ++k) grown[k].held = true;
+        layers::hold_runs(grown, footprint, bridge_limit);
+        firm = std::all_of(grown.begin(), grown.end(), [](const layers::PieceSample& q) { return q.held; });
+    }
+    if (firm) layers::hold_runs(p, footprint, bridge_limit);  // else (b) holds nothing here
     if (all_held() || !any_tip || here.empty()) return all_held();
     // Rule (c): the model of this layer within a cell of support beneath
     // rests on a tip, which holds what lies within the point radius of it.

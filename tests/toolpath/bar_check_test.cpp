@@ -16,7 +16,7 @@ namespace {
 // to (30, 20), on loops of outer radius 1 at its ends on layers 17-21; with
 // `beside`, a loop of outer radius 2.5 on layers 17-19 whose edge passes
 // 0.25 mm from the bar's near line (within rule (a)'s reach, 0.336 mm).
-std::vector<std::size_t> unheld(bool beside) {
+std::vector<std::size_t> unheld(bool beside, double wall_gap = 0) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
     plan::Scaffold sc;
@@ -32,6 +32,13 @@ std::vector<std::size_t> unheld(bool beside) {
             const double y = 20 + s.support_width / 2 + 0.25 + 2.5;
             lp.paths.push_back({toolpath::loop(25, y, 2.5, s.support_width), s.support_width});
         }
+        if (wall_gap > 0 && layer <= 19) {
+            // A support bead across under the bar at x 23, and a wall along
+            // it from x 24 to 28.5, `wall_gap` from its near line's centre.
+            lp.paths.push_back({{{23, 17}, {23, 23}}, s.support_width});
+            const double y = 20 + s.support_width / 2 + wall_gap + s.support_width / 2;
+            lp.paths.push_back({{{24, y}, {28.5, y}}, s.support_width});
+        }
         if (layer >= 20)
             for (auto& line : toolpath::bar_lines(br, s.support_width, s.pillar_radius))
                 lp.paths.push_back({line, s.support_width});
@@ -45,3 +52,15 @@ std::vector<std::size_t> unheld(bool beside) {
 TEST(BarCheck, BarAcrossTwoPillarTopsIsHeld) { EXPECT_TRUE(unheld(false).empty()); }
 
 TEST(BarCheck, BarAlongTheFlankOfAColumnIsNotHeld) { EXPECT_EQ(unheld(true), std::vector<std::size_t>{0}); }
+
+// METHOD's crossing test from a held end: the bar leaves the bead across
+// it at x 23 (held by rule (a) to about 23.56: its edge 23.225 plus the
+// reach 0.336) and must get away from the footprint by half of the 1 mm it
+// walks. Beside a wall 1.0 mm off it does from the held end (0.33 -> 1.0),
+// but not from three samples further on (0.63 -> 1.0), where the
+// validator's reach may put the held end: not taken. A wall 1.35 mm off
+// leaves room for both (0.63 -> 1.35).
+TEST(BarCheck, ACrossingThatHoldsOnlyFromTheExactHeldEndIsNotTaken) {
+    EXPECT_EQ(unheld(false, 1.0), std::vector<std::size_t>{0});
+    EXPECT_TRUE(unheld(false, 1.35).empty());
+}
