@@ -32,6 +32,42 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
         model_.push_back(std::move(g));
     }
     grown_.resize(model_.size());
+    coarse_.resize(model_.size());
+    coarse_h_ = (proto.height() + 7) / 8;
+    coarse_wpr_ = (proto.words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
+}
+
+bool Obstacles::surely_clear(int layer, double x, double y, double r) const {
+    const layers::BitGrid& g = model_[layer];
+    std::vector<std::uint64_t>& c = coarse_[layer];
+    if (c.empty()) {
+        c.assign(static_cast<std::size_t>(coarse_h_) * coarse_wpr_ + 1, 0);  // never empty once built
+        for (int j = 0; j < g.height(); ++j) {
+            const std::uint64_t* row = g.row_words(j);
+            std::uint64_t* out = &c[static_cast<std::size_t>(j / 8) * coarse_wpr_];
+            for (int w = 0; w < g.words_per_row(); ++w)
+                for (int k = 0; k < 8 && (row[w] >> (8 * k)); ++k)
+                    if ((row[w] >> (8 * k)) & 0xFF) {
+                        const int b = w * 8 + k;
+                        out[b >> 6] |= std::uint64_t{1} << (b & 63);
+                    }
+        }
+    }
+    // The cells disc_meets may look at, with a cell to spare each way.
+    const int j0 = std::max(0, g.row(y - r) - 1), j1 = std::min(g.height() - 1, g.row(y + r) + 1);
+    const int i0 = std::max(0, g.col(x - r) - 1), i1 = std::min(g.width() - 1, g.col(x + r) + 1);
+    if (j0 > j1 || i0 > i1) return true;
+    const int b0 = i0 / 8, b1 = i1 / 8;
+    for (int cj = j0 / 8; cj <= j1 / 8; ++cj) {
+        const std::uint64_t* row = &c[static_cast<std::size_t>(cj) * coarse_wpr_];
+        for (int w = b0 >> 6; w <= (b1 >> 6); ++w) {
+            std::uint64_t m = ~std::uint64_t{0};
+            if (w == (b0 >> 6)) m &= ~std::uint64_t{0} << (b0 & 63);
+            if (w == (b1 >> 6) && (b1 & 63) != 63) m &= (std::uint64_t{1} << ((b1 & 63) + 1)) - 1;
+            if (row[w] & m) return false;
+        }
+    }
+    return true;
 }
 
 bool Obstacles::line_clear(int layer, double x0, double y0, double x1, double y1) const {
@@ -363,7 +399,8 @@ bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
     if (x == run_.x && y == run_.y && r <= run_.r && layer >= run_.layers.lo && layer <= run_.layers.hi) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
-    return !disc_meets(model_[layer], x, y, r);
+    if (!(r >= 0) || std::abs(x) > 1e7 || std::abs(y) > 1e7) return !disc_meets(model_[layer], x, y, r);  // no int overflow below
+    return surely_clear(layer, x, y, r) || !disc_meets(model_[layer], x, y, r);
 }
 
 bool Obstacles::disc_clear_exact(int layer, double x, double y, double r) const {

@@ -133,6 +133,14 @@ private:
     static constexpr std::size_t kFastBudget = std::size_t{64} << 20;  // bytes for all lookups
     int fast_disc(int layer, double x, double y, double r) const;  // 1 clear, 0 blocked, -1 unknown
 
+    // Per layer, one bit per 8 x 8 cells: whether any of them is set (built
+    // on first use). A disc whose bounding box meets no set block misses the
+    // model without the exact test: the pillar searches ask tapered radii
+    // that never get a lookup, mostly away from the model.
+    bool surely_clear(int layer, double x, double y, double r) const;
+    mutable std::vector<std::vector<std::uint64_t>> coarse_;
+    int coarse_h_ = 0, coarse_wpr_ = 0;
+
     std::vector<double> z_, h_;
     std::vector<int> below_;
     std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
