@@ -51,6 +51,20 @@ struct Timings {
     }
 };
 
+// One line per stage on stderr once the run has taken longer than
+// Request::progress_after_s (a full plate may plan for minutes; a host's log
+// of a short run stays as it was).
+struct Progress {
+    spdlog::logger& log;
+    double after_s;
+    Clock::time_point start = Clock::now();
+    template <typename... Args>
+    void say(fmt::format_string<Args...> what, Args&&... args) {
+        const double s = std::chrono::duration<double>(Clock::now() - start).count();
+        if (s >= after_s) log.info("{} ({:.0f} s so far)", fmt::format(what, std::forward<Args>(args)...), s);
+    }
+};
+
 const char* method_name(Method m) {
     switch (m) {
         case Method::Scaffold: return "scaffold";
@@ -145,6 +159,7 @@ gcode::OutputFormat output_format(const std::string& name) {
 Outcome run(const Request& req, spdlog::logger& log) {
     const gcode::OutputFormat format = output_format(req.output_format);
     Timings time;
+    Progress progress{log, req.progress_after_s};
     gcode::Program program;
     if (req.input_text) {
         program = gcode::parse(std::move(*req.input_text), req.input);
@@ -191,6 +206,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     bool big = program.text.size() > 10'000'000;
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
+    progress.say("reading layers");
     layers::LayerStack stack = layers::build_layers(program, settings);
     double model_mm = 0, own_support_mm = 0;
     for (const auto& m : program.moves)
@@ -210,6 +226,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // them, the largest part of a big file's memory.
     std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
+    progress.say("finding overhangs");
     const overhang::Overhangs overhangs = overhang::find_overhangs(stack, settings);
     overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
     time.lap("overhangs");
@@ -243,6 +260,8 @@ Outcome run(const Request& req, spdlog::logger& log) {
         toolpath::SupportPaths paths;
     } kept;
     for (int round = 0;; ++round) {
+        if (round == 0) progress.say("planning {} support points", detected.points.size());
+        else progress.say("planning again without {} bars (plan {} of at most {})", forbidden.size(), round + 1, kBarRounds + 1);
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, *obstacles, settings)
                                                       : plan::plan_scaffold(points, stack, *obstacles, settings, forbidden, answers);
@@ -314,6 +333,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     if (auto it = req.files.find("preview"); it != req.files.end())
         gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
     for (layers::Layer& layer : stack.layers) std::vector<layers::Segment>().swap(layer.segments);  // drawn for the last time
+    progress.say("writing the support into the G-code");
     splice::SpliceResult spliced = splice::splice(program, stack, paths, settings);
     time.lap("splice");
 
@@ -346,6 +366,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::string time_change;
     Outcome outcome{spliced.filament_mm, time_before, time_before};
     if (estimate_time) {
+        progress.say("estimating the print time");
         double before = time_before;
         double after = check::estimate_print_time(req.output_text ? gcode::parse(*req.output_text, program.path)
                                                                   : gcode::read_file(req.output));

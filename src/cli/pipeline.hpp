@@ -18,6 +18,9 @@ struct Request {
     SettingMap overrides;                      // scaffold options by option name
     SettingMap slicer_overrides;               // --set KEY=VALUE
     std::string output_format;                 // "ascii", "binary" or empty: as the input
+    // Progress lines (at info level, so -q silences them) start once a run
+    // has taken this long: a short run says nothing until its summary.
+    double progress_after_s = 2.0;
     // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
     // from here instead of reading `input`, and the output kept here instead
     // of written.

@@ -157,6 +157,8 @@ int main(int argc, char** argv) {
             req.slicer_overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
         }
     }
+    // Tests make a short run show its progress lines.
+    if (const char* after = std::getenv("SCAFFOLD_PROGRESS_AFTER")) req.progress_after_s = std::strtod(after, nullptr);
     try {
         scaffold::cli::run(req, *logger);
     } catch (const scaffold::Error& e) {

@@ -159,14 +159,14 @@ bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double 
     if (!model_.segment_clear) return true;
     Key key = key_of(x0, y0, x1, y1, z);
     std::lock_guard<std::mutex> lock(model_mutex_);
-    if (auto it = answers_->bars.find(key); it != answers_->bars.end()) return it->second;
+    if (const bool* known = answers_->bars.find(key)) return *known;
     // The bar fills the layers up to kBarThickness above z; its ends reach
     // into the pillar tops, so the whole pillar radius keeps the gap.
     std::vector<double> layers = model_.tops_between(z, z + kBarThickness, s_.layer_height);
     bool ok = !layers.empty();
     for (double zl : layers)
         ok = ok && model_.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
-    answers_->bars.emplace(key, ok);
+    answers_->bars.insert(key, ok);
     return ok;
 }
 
@@ -178,9 +178,9 @@ bool BridgeSearch::end_stands(double x, double y, double z) {
     if (!model_.end_stands) return true;
     const Key key{std::lround(x * 1000), std::lround(y * 1000), std::lround(z * 1000), 0, 0};
     std::lock_guard<std::mutex> lock(model_mutex_);
-    if (auto it = answers_->ends.find(key); it != answers_->ends.end()) return it->second;
+    if (const bool* known = answers_->ends.find(key)) return *known;
     bool ok = model_.end_stands(x, y, z);
-    answers_->ends.emplace(key, ok);
+    answers_->ends.insert(key, ok);
     return ok;
 }
 
@@ -333,7 +333,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         blocked = false;
         // The bar before the ends when the bar is tested here at all: a
         // blocked bar spares the pillar searches under its ends.
-        if (!rejected_.empty() && rejected_.count(key_of(x0, y0, x1, y1, z))) return false;
+        if (!rejected_.empty() && rejected_.contains(key_of(x0, y0, x1, y1, z))) return false;
         if (eager && !bar_clear(x0, y0, x1, y1, z)) {
             blocked = true;
             return false;
@@ -409,7 +409,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
             if (rejected_.empty()) return false;
             double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
             double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
-            return rejected_.count(key_of(x0, y0, x1, y1, z)) > 0;
+            return rejected_.contains(key_of(x0, y0, x1, y1, z));
         };
         // A bar over a blocked one is blocked too: at this height, with the
         // left ends taken outwards, every bar reaching right to
@@ -534,12 +534,12 @@ std::optional<Candidate> BridgeSearch::best() {
         const Candidate& c = sd.best;
         Key key = key_of(c.x0, c.y0, c.x1, c.y1, c.z);
         // Another seed's bridge on the same line may have been rejected since.
-        bool ok = !rejected_.count(key);
+        bool ok = !rejected_.contains(key);
         if (ok && !sd.bar_checked) {
             ok = bar_clear(c.x0, c.y0, c.x1, c.y1, c.z);
             if (ok) sd.bar_checked = true;
             else {
-                rejected_.insert(key);
+                rejected_.insert(key, 1);
                 ++sd.blocked;
             }
         }
@@ -550,7 +550,7 @@ std::optional<Candidate> BridgeSearch::best() {
 }
 
 void BridgeSearch::reject(const Candidate& c) {
-    rejected_.insert(key_of(c.x0, c.y0, c.x1, c.y1, c.z));
+    rejected_.insert(key_of(c.x0, c.y0, c.x1, c.y1, c.z), 1);
     if (c.seed >= 0 && !seeds_[c.seed].dirty) {
         seeds_[c.seed].dirty = true;
         dirty_.push_back(c.seed);

@@ -4,7 +4,9 @@
 // point, kept per (point, direction) and updated only where the active set
 // changes, so the greedy planner does not rescan everything at each step.
 // Pure geometry: the model is seen through ModelView, which tests fake.
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <functional>
 #include <map>
 #include <memory>
@@ -106,14 +108,92 @@ struct BarKeyHash {
     }
 };
 
+// A set or map keyed by BarKey: open addressing, linear probing, a power of
+// two slots kept at most half full, keys packed to 32 bits a coordinate
+// (microns: 2 km either way; a key beyond goes to a side map). Looked up
+// far more often than filled (every span a seed scans), where
+// std::unordered_map's node per entry cost two or three cache misses a
+// lookup: on a plate of copies the tables outgrow the caches. Looked up
+// only, never iterated.
+template <typename V>
+class BarTable {
+public:
+    // The value stored for k, or null.
+    const V* find(const BarKey& k) const {
+        Packed p;
+        if (!pack(k, p)) {
+            auto it = wide_.find(k);
+            return it == wide_.end() ? nullptr : &it->second;
+        }
+        if (slots_.empty()) return nullptr;
+        for (std::size_t i = BarKeyHash{}(k) & mask_;; i = (i + 1) & mask_) {
+            const Slot& sl = slots_[i];
+            if (!sl.used) return nullptr;
+            if (sl.key == p) return &sl.value;
+        }
+    }
+    bool contains(const BarKey& k) const { return find(k) != nullptr; }
+    // Stores v for k unless k is already there (as emplace).
+    void insert(const BarKey& k, V v) {
+        Packed p;
+        if (!pack(k, p)) {
+            wide_.emplace(k, v);
+            return;
+        }
+        if (2 * (size_ + 1) > slots_.size()) grow();
+        place(BarKeyHash{}(k), p, v);
+    }
+    bool empty() const { return size_ == 0 && wide_.empty(); }
+
+private:
+    using Packed = std::array<std::int32_t, 5>;
+    static bool pack(const BarKey& k, Packed& p) {
+        const std::array<long, 5> v{std::get<0>(k), std::get<1>(k), std::get<2>(k), std::get<3>(k), std::get<4>(k)};
+        for (std::size_t i = 0; i < 5; ++i) {
+            if (v[i] < std::numeric_limits<std::int32_t>::min() || v[i] > std::numeric_limits<std::int32_t>::max())
+                return false;
+            p[i] = static_cast<std::int32_t>(v[i]);
+        }
+        return true;
+    }
+    struct Slot {
+        Packed key{};
+        std::uint32_t hash = 0;  // the low bits of the key's hash: where it goes when the table grows
+        V value{};
+        bool used = false;
+    };
+    void place(std::size_t h, const Packed& p, V v) {
+        for (std::size_t i = h & mask_;; i = (i + 1) & mask_) {
+            Slot& sl = slots_[i];
+            if (sl.used && sl.key == p) return;
+            if (!sl.used) {
+                sl = {p, static_cast<std::uint32_t>(h), v, true};
+                ++size_;
+                return;
+            }
+        }
+    }
+    void grow() {
+        std::vector<Slot> old = std::move(slots_);
+        slots_.assign(old.empty() ? 64 : 2 * old.size(), Slot{});
+        mask_ = slots_.size() - 1;
+        size_ = 0;
+        for (const Slot& sl : old)
+            if (sl.used) place(sl.hash, sl.key, sl.value);
+    }
+    std::vector<Slot> slots_;
+    std::size_t mask_ = 0, size_ = 0;
+    std::unordered_map<BarKey, V, BarKeyHash> wide_;
+};
+
 // The model's answers about bars and bridge ends, which depend on the model
 // and the settings only: a search made again on the same model (the
 // pipeline plans again without bars it could not hold as built) reuses them
 // instead of asking again (bunny.prusaslicer25: 516k pillar descents over
 // four plans, 130k of them distinct). Looked up only, never iterated.
 struct ModelAnswers {
-    std::unordered_map<BarKey, bool, BarKeyHash> bars;  // bar_clear
-    std::unordered_map<BarKey, bool, BarKeyHash> ends;  // end_stands
+    BarTable<bool> bars;  // bar_clear
+    BarTable<bool> ends;  // end_stands
 };
 
 // The set of active points with, for each point and sweep direction, the
@@ -199,7 +279,7 @@ private:
     std::vector<int> dirty_;        // seeds to recompute before the next best()
     std::set<std::pair<double, int>> ranked_;  // (-score, seed): best first, ties by seed
     // Looked up only, never iterated: hashing keeps the plan deterministic.
-    std::unordered_set<Key, BarKeyHash> rejected_;
+    BarTable<char> rejected_;
     std::shared_ptr<ModelAnswers> answers_;
     struct Miss {
         int direction;

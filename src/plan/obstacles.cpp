@@ -32,6 +32,42 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
         model_.push_back(std::move(g));
     }
     grown_.resize(model_.size());
+    coarse_.resize(model_.size());
+    coarse_h_ = (proto.height() + 7) / 8;
+    coarse_wpr_ = (proto.words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
+}
+
+bool Obstacles::surely_clear(int layer, double x, double y, double r) const {
+    const layers::BitGrid& g = model_[layer];
+    std::vector<std::uint64_t>& c = coarse_[layer];
+    if (c.empty()) {
+        c.assign(static_cast<std::size_t>(coarse_h_) * coarse_wpr_ + 1, 0);  // never empty once built
+        for (int j = 0; j < g.height(); ++j) {
+            const std::uint64_t* row = g.row_words(j);
+            std::uint64_t* out = &c[static_cast<std::size_t>(j / 8) * coarse_wpr_];
+            for (int w = 0; w < g.words_per_row(); ++w)
+                for (int k = 0; k < 8 && (row[w] >> (8 * k)); ++k)
+                    if ((row[w] >> (8 * k)) & 0xFF) {
+                        const int b = w * 8 + k;
+                        out[b >> 6] |= std::uint64_t{1} << (b & 63);
+                    }
+        }
+    }
+    // The cells disc_meets may look at, with a cell to spare each way.
+    const int j0 = std::max(0, g.row(y - r) - 1), j1 = std::min(g.height() - 1, g.row(y + r) + 1);
+    const int i0 = std::max(0, g.col(x - r) - 1), i1 = std::min(g.width() - 1, g.col(x + r) + 1);
+    if (j0 > j1 || i0 > i1) return true;
+    const int b0 = i0 / 8, b1 = i1 / 8;
+    for (int cj = j0 / 8; cj <= j1 / 8; ++cj) {
+        const std::uint64_t* row = &c[static_cast<std::size_t>(cj) * coarse_wpr_];
+        for (int w = b0 >> 6; w <= (b1 >> 6); ++w) {
+            std::uint64_t m = ~std::uint64_t{0};
+            if (w == (b0 >> 6)) m &= ~std::uint64_t{0} << (b0 & 63);
+            if (w == (b1 >> 6) && (b1 & 63) != 63) m &= (std::uint64_t{1} << ((b1 & 63) + 1)) - 1;
+            if (row[w] & m) return false;
+        }
+    }
+    return true;
 }
 
 bool Obstacles::line_clear(int layer, double x0, double y0, double x1, double y1) const {
@@ -114,6 +150,7 @@ DiscLookup::DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layo
     ny_ = g.height();
     wpr_ = g.words_per_row();
     bands_ = (ny_ + kBlockRows - 1) / kBlockRows;
+    tiles_ = (wpr_ + kBlockWords - 1) / kBlockWords;
     // A query point lies in its cell, [0, 1] x [0, 1] from the cell's corner
     // (widened by kEdgeCells against rounding); a set cell (di, dj) cells
     // away has its centre at least lo(di), lo(dj) and at most hi(di),
@@ -131,17 +168,18 @@ DiscLookup::DiscLookup(const std::vector<layers::BitGrid>& model, double r, Layo
         while (hi(d) * hi(d) + hi(h + 1) * hi(h + 1) <= r2_lo) ++h;
         sure_.push_back(h);
     }
-    if (layout_ == Layout::Columns) blocks_.resize(static_cast<std::size_t>((layers_ + 63) / 64) * bands_);
+    if (layout_ == Layout::Columns) blocks_.resize(static_cast<std::size_t>((layers_ + 63) / 64) * bands_ * tiles_);
     else rasters_.resize(layers_);
     usable_ = true;
 }
 
-void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const {
+void DiscLookup::grow_rows(int layer, int j0, int j1, std::size_t w0, std::size_t w1, std::uint64_t* maybe,
+                           std::uint64_t* surely) const {
     const layers::BitGrid& g = model_[layer];
     const int D = static_cast<int>(maybe_.size()) - 1;
-    const std::size_t W = static_cast<std::size_t>(wpr_);
-    std::fill(maybe, maybe + (j1 - j0 + 1) * W, 0);
-    std::fill(surely, surely + (j1 - j0 + 1) * W, 0);
+    const std::size_t W = static_cast<std::size_t>(wpr_), OW = w1 - w0;
+    std::fill(maybe, maybe + (j1 - j0 + 1) * OW, 0);
+    std::fill(surely, surely + (j1 - j0 + 1) * OW, 0);
     // Each source row dilated sideways, one cell at a time, as far as its
     // distance to an output row allows; then or-ed into those rows.
     std::vector<std::uint64_t> dil(static_cast<std::size_t>(maybe_[0] + 1) * W);
@@ -157,6 +195,11 @@ void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std:
         const std::size_t reach = static_cast<std::size_t>(hmax + 63) / 64;
         wa = wa > reach ? wa - reach : 0;
         wb = std::min(W, wb + reach);
+        // Words more than the reach away from the output's cannot reach it;
+        // those cut off at the range's edge only miss cells outside it.
+        wa = std::max(wa, w0 > reach ? w0 - reach : 0);
+        wb = std::min(wb, w1 + reach);
+        if (wa >= wb) continue;
         std::copy(src + wa, src + wb, dil.begin() + static_cast<std::ptrdiff_t>(wa));
         for (int h = 1; h <= hmax; ++h) {
             const std::uint64_t* in = &dil[(h - 1) * W];
@@ -166,14 +209,15 @@ void DiscLookup::grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std:
                 out[w] = in[w] | in[w] << 1 | prev >> 63 | in[w] >> 1 | next << 63;
             }
         }
+        const std::size_t oa = std::max(wa, w0), ob = std::min(wb, w1);
         for (int jo = std::max(j0, js - D); jo <= std::min(j1, js + D); ++jo) {
             const int d = std::abs(jo - js);
-            const std::size_t at = static_cast<std::size_t>(jo - j0) * W;
+            const std::size_t at = static_cast<std::size_t>(jo - j0) * OW;
             const std::uint64_t* m = &dil[maybe_[d] * W];
-            for (std::size_t w = wa; w < wb; ++w) maybe[at + w] |= m[w];
+            for (std::size_t w = oa; w < ob; ++w) maybe[at + w - w0] |= m[w];
             if (d < static_cast<int>(sure_.size())) {
-                const std::uint64_t* s = &dil[sure_[d] * W];
-                for (std::size_t w = wa; w < wb; ++w) surely[at + w] |= s[w];
+                const std::uint64_t* sr = &dil[sure_[d] * W];
+                for (std::size_t w = oa; w < ob; ++w) surely[at + w - w0] |= sr[w];
             }
         }
     }
@@ -215,19 +259,23 @@ std::uint64_t transpose8(std::uint64_t x) {
 
 }  // namespace
 
-void DiscLookup::build_group(Block& b, int first, int band) {
+void DiscLookup::build_group(Block& b, int first, int band, int tile) {
     const int j0 = band * kBlockRows, j1 = std::min(ny_ - 1, j0 + kBlockRows - 1), rows = j1 - j0 + 1;
     const int n = std::min(kGroup, layers_ - first);
-    const std::size_t W = static_cast<std::size_t>(wpr_), plane = static_cast<std::size_t>(kBlockRows) * W;
+    const std::size_t w0 = static_cast<std::size_t>(tile) * kBlockWords;
+    const std::size_t w1 = std::min(static_cast<std::size_t>(wpr_), w0 + kBlockWords), W = w1 - w0;
+    const std::size_t plane = static_cast<std::size_t>(kBlockRows) * W;
+    constexpr std::size_t kCols = 64 * kBlockWords;
     // Per layer of the group: its maybe rows, then its surely rows.
     scratch_.assign(2 * kGroup * plane, 0);
-    for (int g = 0; g < n; ++g) grow_rows(first + g, j0, j1, &scratch_[2 * g * plane], &scratch_[(2 * g + 1) * plane]);
+    for (int g = 0; g < n; ++g)
+        grow_rows(first + g, j0, j1, w0, w1, &scratch_[2 * g * plane], &scratch_[(2 * g + 1) * plane]);
     // Eight cells by the group's eight layers at a time, transposed into
     // one byte of each cell's word.
     const int lane = first & 63;
     for (int k = 0; k < 2; ++k)
         for (int jo = 0; jo < rows; ++jo) {
-            std::uint64_t* cells = &b.bits[static_cast<std::size_t>(jo) * nx_ * 2];
+            std::uint64_t* cells = &b.bits[static_cast<std::size_t>(jo) * kCols * 2];
             const std::uint64_t* in[kGroup];
             for (int g = 0; g < kGroup; ++g) in[g] = &scratch_[(2 * g + k) * plane + jo * W];
             for (std::size_t w = 0; w < W; ++w) {
@@ -240,9 +288,9 @@ void DiscLookup::build_group(Block& b, int first, int band) {
                     if (!m) continue;
                     m = transpose8(m);  // byte c: cell c's layers
                     for (int c = 0; c < 8; ++c) {
-                        const int cell = static_cast<int>(w * 64) + c8 + c;
+                        const int at = static_cast<int>(w * 64) + c8 + c;  // in the block
                         const std::uint64_t byte = (m >> (8 * c)) & 0xFF;
-                        if (byte && cell < nx_) cells[static_cast<std::size_t>(cell) * 2 + k] |= byte << lane;
+                        if (byte && static_cast<int>(w0 * 64) + at < nx_) cells[static_cast<std::size_t>(at) * 2 + k] |= byte << lane;
                     }
                 }
             }
@@ -251,19 +299,21 @@ void DiscLookup::build_group(Block& b, int first, int band) {
 }
 
 int DiscLookup::lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear) {
-    const int band = j / kBlockRows;
-    Block& b = blocks_[static_cast<std::size_t>(layer >> 6) * bands_ + band];
+    const int band = j / kBlockRows, tile = i / (64 * kBlockWords);
+    constexpr std::size_t kCols = 64 * kBlockWords;
+    Block& b = blocks_[(static_cast<std::size_t>(layer >> 6) * bands_ + band) * tiles_ + tile];
     const std::uint64_t bit = std::uint64_t{1} << (layer & 63);
     if (!(b.built & bit)) {
-        const std::size_t cells = static_cast<std::size_t>(kBlockRows) * nx_;
+        const std::size_t cells = kBlockRows * kCols;
         if (b.bits.empty()) {
             if (used + cells * 2 * sizeof(std::uint64_t) > budget) return -1;
             used += cells * 2 * sizeof(std::uint64_t);
             b.bits.assign(cells * 2, 0);
         }
-        build_group(b, layer & ~(kGroup - 1), band);
+        build_group(b, layer & ~(kGroup - 1), band, tile);
     }
-    const std::uint64_t* cell = &b.bits[(static_cast<std::size_t>(j - band * kBlockRows) * nx_ + i) * 2];
+    const std::uint64_t* cell =
+        &b.bits[(static_cast<std::size_t>(j - band * kBlockRows) * kCols + (i - tile * static_cast<int>(kCols))) * 2];
     if (!(cell[0] & bit)) {
         // The run of built layers without a maybe bit that holds this one.
         const std::uint64_t free = b.built & ~cell[0];
@@ -289,7 +339,7 @@ int DiscLookup::lookup_per_layer(int layer, int i, int j, std::size_t budget, st
         r.surely.resize(words);
         for (int j0 = 0; j0 < ny_; j0 += kBlockRows) {
             const int j1 = std::min(ny_ - 1, j0 + kBlockRows - 1);
-            grow_rows(layer, j0, j1, &r.maybe[j0 * W], &r.surely[j0 * W]);
+            grow_rows(layer, j0, j1, 0, W, &r.maybe[j0 * W], &r.surely[j0 * W]);
         }
     }
     const std::size_t w = static_cast<std::size_t>(j) * W + (i >> 6);
@@ -349,7 +399,8 @@ bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
     if (x == run_.x && y == run_.y && r <= run_.r && layer >= run_.layers.lo && layer <= run_.layers.hi) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
-    return !disc_meets(model_[layer], x, y, r);
+    if (!(r >= 0) || std::abs(x) > 1e7 || std::abs(y) > 1e7) return !disc_meets(model_[layer], x, y, r);  // no int overflow below
+    return surely_clear(layer, x, y, r) || !disc_meets(model_[layer], x, y, r);
 }
 
 bool Obstacles::disc_clear_exact(int layer, double x, double y, double r) const {

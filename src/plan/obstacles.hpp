@@ -27,8 +27,10 @@ bool disc_meets(const layers::BitGrid& g, double x, double y, double r);
 // - Columns, for a radius asked on many layers (a pillar's body, tested
 //   layer by layer down its column): the bits of 64 layers of a cell in one
 //   word, so a column walked down reads the same words (rasters a layer
-//   apart are far apart in memory). Blocks of 64 rows x 64 layers, filled
-//   eight layers at a time.
+//   apart are far apart in memory). Blocks of 64 rows x 256 columns x 64
+//   layers, filled eight layers at a time, built only where columns are
+//   asked (blocks the raster's width spent the budget on a plate of copies
+//   long before they covered its columns: the rest fell to the exact test).
 // - PerLayer, for a radius asked on a few layers (a step of a tip's
 //   taper): two rasters per layer asked, whole.
 class DiscLookup {
@@ -48,6 +50,7 @@ public:
     };
     int lookup(int layer, double x, double y, std::size_t budget, std::size_t& used, LayerRange& clear);
     static constexpr int kBlockRows = 64;
+    static constexpr int kBlockWords = 4;  // a Columns block's width, in 64-cell words
 
 private:
     struct Block {
@@ -57,12 +60,14 @@ private:
     struct Rasters {
         std::vector<std::uint64_t> maybe, surely;  // row-major, words_per_row() words a row
     };
-    // Rows j0..j1 (at most kBlockRows) of the layer's raster grown by the
-    // maybe_ and the sure_ offsets, into maybe and surely (zeroed here).
-    void grow_rows(int layer, int j0, int j1, std::uint64_t* maybe, std::uint64_t* surely) const;
+    // Rows j0..j1 (at most kBlockRows), words w0..w1 - 1 of each, of the
+    // layer's raster grown by the maybe_ and the sure_ offsets, into maybe
+    // and surely (w1 - w0 words a row, zeroed here).
+    void grow_rows(int layer, int j0, int j1, std::size_t w0, std::size_t w1, std::uint64_t* maybe,
+                   std::uint64_t* surely) const;
     // Fills layers first.. first + kGroup - 1 (those that exist) of a Columns block.
     static constexpr int kGroup = 8;
-    void build_group(Block& b, int first, int band);
+    void build_group(Block& b, int first, int band, int tile);
     int lookup_columns(int layer, int i, int j, std::size_t budget, std::size_t& used, LayerRange* clear);
     int lookup_per_layer(int layer, int i, int j, std::size_t budget, std::size_t& used);
 
@@ -71,13 +76,13 @@ private:
     double r_;
     Layout layout_;
     bool usable_ = false;
-    int nx_ = 0, ny_ = 0, wpr_ = 0, bands_ = 0;
+    int nx_ = 0, ny_ = 0, wpr_ = 0, bands_ = 0, tiles_ = 0;  // tiles_: Columns blocks across a row
     // Per row offset d: a set cell d rows and at most maybe_[d] columns away
     // may have its centre within r of a point of the cell (when there is
     // none, every disc centred in the cell misses); one at most sure_[d]
     // columns away has it within r of every point (every such disc meets).
     std::vector<int> maybe_, sure_;
-    std::vector<Block> blocks_;    // Columns: by (layer / 64) * bands_ + row / kBlockRows
+    std::vector<Block> blocks_;    // Columns: by ((layer / 64) * bands_ + row / kBlockRows) * tiles_ + word / kBlockWords
     std::vector<Rasters> rasters_;  // PerLayer: by layer
     std::vector<std::uint64_t> scratch_;
     // The last point asked and its cell (none yet: NaN equals nothing).
@@ -127,6 +132,14 @@ private:
     static constexpr long long kFastAfter = 4000;  // queries of one radius before its lookup is built
     static constexpr std::size_t kFastBudget = std::size_t{64} << 20;  // bytes for all lookups
     int fast_disc(int layer, double x, double y, double r) const;  // 1 clear, 0 blocked, -1 unknown
+
+    // Per layer, one bit per 8 x 8 cells: whether any of them is set (built
+    // on first use). A disc whose bounding box meets no set block misses the
+    // model without the exact test: the pillar searches ask tapered radii
+    // that never get a lookup, mostly away from the model.
+    bool surely_clear(int layer, double x, double y, double r) const;
+    mutable std::vector<std::vector<std::uint64_t>> coarse_;
+    int coarse_h_ = 0, coarse_wpr_ = 0;
 
     std::vector<double> z_, h_;
     std::vector<int> below_;

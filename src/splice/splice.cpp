@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <numbers>
+#include <unordered_map>
+#include <vector>
 
 #include "gcode/blocks.hpp"
 #include "gcode/lexer.hpp"
@@ -183,8 +186,17 @@ private:
         double widest = 0;
         for (int i = 0; i <= n; ++i) {
             const double t = static_cast<double>(i) / n, px = x_ + (x - x_) * t, py = y_ + (y - y_) * t;
-            double gap = 1e9;
-            for (const Bead& b : printed_) gap = std::min(gap, distance_to_segment(px, py, b) - b.width / 2);
+            // Gaps of kGapCap or more decide nothing below (kGapCap is above
+            // every threshold they are compared with), so only the beads in
+            // the sample's cell are asked: a plate of copies prints thousands
+            // of beads a layer and travels across the bed, and asking every
+            // bead at every sample grew with the square of the plate.
+            double gap = kGapCap;
+            if (auto it = near_.find(cell_key(cell_of(px), cell_of(py))); it != near_.end())
+                for (std::uint32_t k : it->second) {
+                    const Bead& b = printed_[k];
+                    gap = std::min(gap, distance_to_segment(px, py, b) - b.width / 2);
+                }
             widest = std::max(widest, gap);
             if (widest > kFreshLeft && gap <= kFreshClearance + kFreshMargin && gap < widest - kFreshFall) return true;
         }
@@ -194,6 +206,24 @@ private:
     struct Bead {
         double x0, y0, x1, y1, width;
     };
+
+    // Beads by the grid cells within kGapCap (and a margin for rounding) of
+    // them: a sample whose gap to a bead is below kGapCap lies in one of its
+    // cells. Looked up only, never iterated.
+    static constexpr double kGapCap = 1.0;
+    static constexpr double kCell = 2.0;
+    static long cell_of(double v) { return static_cast<long>(std::floor(v / kCell)); }
+    static std::uint64_t cell_key(long i, long j) {
+        return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint64_t>(static_cast<std::uint32_t>(j));
+    }
+    void add_bead(const Bead& b) {
+        const auto k = static_cast<std::uint32_t>(printed_.size());
+        printed_.push_back(b);
+        const double r = kGapCap + b.width / 2 + 0.01;
+        for (long i = cell_of(std::min(b.x0, b.x1) - r); i <= cell_of(std::max(b.x0, b.x1) + r); ++i)
+            for (long j = cell_of(std::min(b.y0, b.y1) - r); j <= cell_of(std::max(b.y0, b.y1) + r); ++j)
+                near_[cell_key(i, j)].push_back(k);
+    }
 
     static double distance_to_segment(double px, double py, const Bead& b) {
         const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
@@ -254,7 +284,7 @@ private:
             first = false;
             filament_ += de;
             length_ += len;
-            printed_.push_back({x_, y_, b.x, b.y, p.width});
+            add_bead({x_, y_, b.x, b.y, p.width});
             seconds_ += move_seconds(len, p.speed_mm_s, accel_);
             x_ = b.x;
             y_ = b.y;
@@ -278,6 +308,7 @@ private:
     int fan_ = 0;
     double filament_ = 0, length_ = 0, seconds_ = 0;
     std::vector<Bead> printed_;  // this block's beads, for the travel rule
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near_;  // bead indices by cell (add_bead)
     std::string out_;
 };
 

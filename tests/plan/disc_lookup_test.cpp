@@ -16,12 +16,12 @@ namespace {
 // Rasters of 0.1 mm cells, 13 x 9.7 mm (three words a row, two bands of
 // rows), one per layer over more than one block of 64 layers: random discs
 // and lines, single cells, an empty and a full layer.
-std::vector<layers::BitGrid> random_rasters(int layers, unsigned seed) {
+std::vector<layers::BitGrid> random_rasters(int layers, unsigned seed, double width = 13.0) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> ux(-0.5, 13.5), uy(-0.5, 10.2), ur(0.0, 1.5);
+    std::uniform_real_distribution<double> ux(-0.5, width + 0.5), uy(-0.5, 10.2), ur(0.0, 1.5);
     std::vector<layers::BitGrid> out;
     for (int l = 0; l < layers; ++l) {
-        layers::BitGrid g(0, 0, 13.0, 9.7, 0.1);
+        layers::BitGrid g(0, 0, width, 9.7, 0.1);
         if (l == 3) {
             for (int j = 0; j < g.height(); ++j) g.set_row_span(j, 0, g.width() - 1);
         } else if (l != 5) {
@@ -55,9 +55,9 @@ std::vector<double> test_radii(std::mt19937& rng) {
 
 // Query points: random, on cell borders, at cell centres, a hair off
 // either, and a whole radius (give or take a hair) from a cell centre.
-std::vector<std::pair<double, double>> test_points(std::mt19937& rng, double r, int n) {
-    std::uniform_real_distribution<double> ux(-1.0, 14.0), uy(-1.0, 10.7);
-    std::uniform_int_distribution<int> ui(-5, 135), uj(-5, 102), pick(0, 5);
+std::vector<std::pair<double, double>> test_points(std::mt19937& rng, double r, int n, double width = 13.0) {
+    std::uniform_real_distribution<double> ux(-1.0, width + 1.0), uy(-1.0, 10.7);
+    std::uniform_int_distribution<int> ui(-5, static_cast<int>(width * 10) + 5), uj(-5, 102), pick(0, 5);
     std::vector<std::pair<double, double>> p;
     for (int k = 0; k < n; ++k) {
         const int i = ui(rng), j = uj(rng);
@@ -85,13 +85,13 @@ struct Tally {
 };
 
 // Every answer the lookup gives is the exact test's; counts the undecided.
-void expect_like_exact(plan::DiscLookup::Layout layout, unsigned seed, Tally& tally) {
-    const std::vector<layers::BitGrid> model = random_rasters(70, seed);
+void expect_like_exact(plan::DiscLookup::Layout layout, unsigned seed, Tally& tally, double width = 13.0) {
+    const std::vector<layers::BitGrid> model = random_rasters(70, seed, width);
     std::mt19937 rng(seed + 1);
     std::size_t used = 0;
     for (double r : test_radii(rng)) {
         plan::DiscLookup lookup(model, r, layout);
-        for (const auto& [x, y] : test_points(rng, r, 400)) {
+        for (const auto& [x, y] : test_points(rng, r, 400, width)) {
             // The same point on a run of layers, as a column asks it.
             int l0 = std::uniform_int_distribution<int>(0, 69)(rng);
             for (int l = l0; l >= std::max(0, l0 - 6); --l) {
@@ -123,6 +123,13 @@ TEST(DiscLookup, ColumnsAnswerAsTheExactTestDoes) {
     for (unsigned seed : {1u, 2u, 3u}) expect_like_exact(plan::DiscLookup::Layout::Columns, seed, t);
     // Undecided only near the edge of a disc or outside the grid: a small
     // share, even of points picked mostly there.
+    EXPECT_GT(t.decided, 3 * t.unknown) << t.decided << " decided, " << t.unknown << " not";
+}
+
+// 40 mm: seven words a row, two blocks across (the second one narrower).
+TEST(DiscLookup, ColumnsAnswerAsTheExactTestDoesAcrossBlocks) {
+    Tally t;
+    expect_like_exact(plan::DiscLookup::Layout::Columns, 11u, t, 40.0);
     EXPECT_GT(t.decided, 3 * t.unknown) << t.decided << " decided, " << t.unknown << " not";
 }
 

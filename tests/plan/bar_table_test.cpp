@@ -1,0 +1,41 @@
+#include <gtest/gtest.h>
+
+#include <random>
+#include <unordered_map>
+
+#include "plan/candidates.hpp"
+
+using namespace scaffold;
+
+// The flat table answers as std::unordered_map does, for keys packed to 32
+// bits and for the wide ones beside them, through many growths.
+TEST(BarTable, AnswersAsAnUnorderedMap) {
+    plan::BarTable<bool> table;
+    std::unordered_map<plan::BarKey, bool, plan::BarKeyHash> ref;
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<long> near(-2000, 2000), pick(0, 20);
+    auto key = [&] {
+        // Nearby coordinates (they crowd the hash), sometimes beyond 32 bits.
+        long far = pick(rng) == 0 ? (long{1} << 40) : 0;
+        return plan::BarKey{near(rng) + far, near(rng), near(rng) * 7, near(rng), pick(rng)};
+    };
+    EXPECT_TRUE(table.empty());
+    for (int i = 0; i < 20000; ++i) {
+        const plan::BarKey k = key();
+        const bool v = pick(rng) % 2;
+        table.insert(k, v);
+        ref.emplace(k, v);  // the first value stays, in both
+        const plan::BarKey q = key();
+        const bool* got = table.find(q);
+        auto it = ref.find(q);
+        ASSERT_EQ(got != nullptr, it != ref.end());
+        if (got) {
+            ASSERT_EQ(*got, it->second);
+        }
+    }
+    for (const auto& [k, v] : ref) {
+        ASSERT_TRUE(table.contains(k));
+        ASSERT_EQ(*table.find(k), v);
+    }
+    EXPECT_FALSE(table.empty());
+}
