@@ -37,6 +37,22 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
     coarse_wpr_ = (proto.words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
 }
 
+namespace {
+
+// Whether any of bits i0..i1 (0 <= i0 <= i1) of a row of 64-bit words is
+// set, a word at a time.
+bool any_bit(const std::uint64_t* row, int i0, int i1) {
+    for (int w = i0 >> 6; w <= (i1 >> 6); ++w) {
+        std::uint64_t m = ~std::uint64_t{0};
+        if (w == (i0 >> 6)) m &= ~std::uint64_t{0} << (i0 & 63);
+        if (w == (i1 >> 6) && (i1 & 63) != 63) m &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
+        if (row[w] & m) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 bool Obstacles::surely_clear(int layer, double x, double y, double r) const {
     const layers::BitGrid& g = model_[layer];
     std::vector<std::uint64_t>& c = coarse_[layer];
@@ -57,16 +73,8 @@ bool Obstacles::surely_clear(int layer, double x, double y, double r) const {
     const int j0 = std::max(0, g.row(y - r) - 1), j1 = std::min(g.height() - 1, g.row(y + r) + 1);
     const int i0 = std::max(0, g.col(x - r) - 1), i1 = std::min(g.width() - 1, g.col(x + r) + 1);
     if (j0 > j1 || i0 > i1) return true;
-    const int b0 = i0 / 8, b1 = i1 / 8;
-    for (int cj = j0 / 8; cj <= j1 / 8; ++cj) {
-        const std::uint64_t* row = &c[static_cast<std::size_t>(cj) * coarse_wpr_];
-        for (int w = b0 >> 6; w <= (b1 >> 6); ++w) {
-            std::uint64_t m = ~std::uint64_t{0};
-            if (w == (b0 >> 6)) m &= ~std::uint64_t{0} << (b0 & 63);
-            if (w == (b1 >> 6) && (b1 & 63) != 63) m &= (std::uint64_t{1} << ((b1 & 63) + 1)) - 1;
-            if (row[w] & m) return false;
-        }
-    }
+    for (int cj = j0 / 8; cj <= j1 / 8; ++cj)
+        if (any_bit(&c[static_cast<std::size_t>(cj) * coarse_wpr_], i0 / 8, i1 / 8)) return false;
     return true;
 }
 
@@ -111,14 +119,7 @@ bool any_in_row(const layers::BitGrid& g, int j, int i0, int i1) {
     i0 = std::max(i0, 0);
     i1 = std::min(i1, g.width() - 1);
     if (i0 > i1) return false;
-    const std::uint64_t* row = g.row_words(j);
-    for (int w = i0 >> 6; w <= (i1 >> 6); ++w) {
-        std::uint64_t m = ~std::uint64_t{0};
-        if (w == (i0 >> 6)) m &= ~std::uint64_t{0} << (i0 & 63);
-        if (w == (i1 >> 6) && (i1 & 63) != 63) m &= (std::uint64_t{1} << ((i1 & 63) + 1)) - 1;
-        if (row[w] & m) return true;
-    }
-    return false;
+    return any_bit(g.row_words(j), i0, i1);
 }
 
 // Rounding in disc_meets moves a cell's distance by some 1e-11 cells (the

@@ -453,21 +453,23 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     // Whether a pillar stands at all (fit_base false: a bridge end asked
     // about) is the plain column's question: a narrower one fits wherever a
     // wider one does.
-    if (target_stiffness(s) > 0 && fit_base)
+    if (target_stiffness(s) > 0 && fit_base) {
         // Where the widened column finds no way down, less widened ones, then
         // a straight one without a neck, then the plain one with its neck,
         // weaker (braced or reported by scaffold-check), rather than none.
-        // Under a bar end a neck may be all that fits at the top: a widened
+        // Under a bar end that holds more above (where the widened column
+        // has no neck), a neck may be all that fits at the top: a widened
         // column with a neck before the plain one.
+        const int below = stack.layers[overhang_layer].below;
+        const bool neck_too = !thin_above && top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6;
         for (bool neck : {thin_above, true}) {
-            const int below = stack.layers[overhang_layer].below;
-            if (neck && !thin_above && !(top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6)) break;
             for (double stiff : {1.0, 0.5, 0.25, 0.0})
                 if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold,
                                                     give, stiff, neck))
                     return chain;
-            if (thin_above) break;
+            if (!neck_too) break;
         }
+    }
     return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, -1.0, thin_above);
 }
 

@@ -28,6 +28,10 @@ struct Bead {
 // coordinates was held here and not there (figure.slic3r13, z 17.2).
 float written(double v) { return static_cast<float>(std::round(v * 1000) / 1000); }
 
+bool every_held(const std::vector<layers::PieceSample>& p) {
+    return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; });
+}
+
 // Whether the line a -> b on a layer is held by `beads` beneath it: rule
 // (a) with the holes they enclose, (b), then (c) near a contact tip (support
 // beneath, under the layer's own model `here`), in the validator's order.
@@ -54,8 +58,7 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     line.x0 = written(a.x), line.y0 = written(a.y), line.x1 = written(b.x), line.y1 = written(b.y);
     p.clear();
     layers::sample_segment(line, 0, held, cell, p);
-    auto all_held = [&] { return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; }); };
-    if (all_held()) return true;
+    if (every_held(p)) return true;
     // Over a hole the beads beneath enclose (the middle of a pillar's loop
     // under the bar's end): held, as the validator fills the footprint. A
     // hole open beyond this grid is taken as open (judged stricter here).
@@ -80,10 +83,10 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
             if (p[i].held)
                 for (std::size_t k = i >= g ? i - g : 0; k <= std::min(p.size() - 1, i + g); ++k) grown[k].held = true;
         layers::hold_runs(grown, footprint, bridge_limit);
-        firm = std::all_of(grown.begin(), grown.end(), [](const layers::PieceSample& q) { return q.held; });
+        firm = every_held(grown);
     }
     if (firm) layers::hold_runs(p, footprint, bridge_limit);  // else (b) holds nothing here
-    if (all_held() || !any_tip || here.empty()) return all_held();
+    if (every_held(p) || !any_tip || here.empty()) return every_held(p);
     // Rule (c): the model of this layer within a cell of support beneath
     // rests on a tip, which holds what lies within the point radius of it.
     layers::BitGrid model = footprint;
@@ -95,7 +98,7 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     const layers::BitGrid tip_reach = tips.dilated(point_radius);
     for (layers::PieceSample& q : p)
         if (!q.held) q.held = tip_reach.get(tip_reach.col(q.x), tip_reach.row(q.y));
-    return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; });
+    return every_held(p);
 }
 
 }  // namespace
