@@ -590,7 +590,14 @@ BitGrid BitGrid::flood_holes(const BitGrid& seeds, const CellBox& box, bool whol
 void draw_hole_seed(BitGrid& seeds, const Segment& sg) {
     using gcode::Role;
     if (sg.role == Role::ExternalPerimeter || sg.role == Role::Perimeter || sg.role == Role::OverhangPerimeter) return;
-    seeds.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width + 3 * seeds.cell());
+    // Grown sideways only: a bead's end lies on the wall it meets, and a
+    // seed grown there too would leak through that wall into a cavity
+    // beyond (a benchy's cabin through the infill of its walls). Beads too
+    // short to keep a middle (dots, turns of gap fill) seed nothing.
+    const double len = std::hypot(sg.x1 - sg.x0, sg.y1 - sg.y0), trim = sg.width / 2 + 2 * seeds.cell();
+    if (len <= 2 * trim) return;
+    const double ux = (sg.x1 - sg.x0) / len * trim, uy = (sg.y1 - sg.y0) / len * trim;
+    seeds.draw_segment(sg.x0 + ux, sg.y0 + uy, sg.x1 - ux, sg.y1 - uy, sg.width + 3 * seeds.cell());
 }
 
 BitGrid make_grid(const LayerStack& stack, double cell, double margin) {

@@ -156,7 +156,8 @@ BitGrid make_grid(const LayerStack& stack, double cell, double margin);
 // perimeters alone is a cavity of the model (a dome's inside, a cabin's
 // room), where support may stand and pass. Draws a model bead into the
 // seeds of the part's holes (for holes_with) if it is no wall, grown by
-// 1.5 cells each side to reach the hole's cells beside it.
+// 1.5 cells each side to reach the hole's cells beside it, and its ends cut
+// back inside the bead (they rest on walls).
 void draw_hole_seed(BitGrid& seeds, const Segment& sg);
 // Draws every segment of the layer.
 void draw_layer(BitGrid& grid, const Layer& layer);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gcode/blocks.hpp"
+#include "gcode/format.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
 
@@ -68,11 +69,12 @@ double move_seconds(double d, double v, double accel) {
 class BlockWriter {
 public:
     BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
-                std::string_view restore_type, gcode::Dialect dialect, const layers::BedMesh* mesh, double accel)
+                std::string_view restore_type, std::string_view restore_width, gcode::Dialect dialect,
+                const layers::BedMesh* mesh, double accel)
         // Retract the way the slicer did at this point: filament pulled back
         // by E is given back by E, whatever else the file does elsewhere.
         : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
-          restore_type_(restore_type), dialect_(dialect), mesh_(mesh), accel_(accel) {
+          restore_type_(restore_type), restore_width_(restore_width), dialect_(dialect), mesh_(mesh), accel_(accel) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
         e_ = saved.e;
@@ -106,7 +108,12 @@ public:
         if (fan_changed_) out_ += saved_.fan > 0 ? "M106 S" + std::to_string(saved_.fan) + "\n" : std::string("M107\n");
         out_ += ";TYPE:";
         out_ += restore_type_.empty() ? std::string_view("Unknown") : restore_type_;
-        out_ += "\n; scaffold: end\n";
+        out_ += "\n";
+        if (width_said_) {
+            out_ += restore_width_;
+            out_ += "\n";
+        }
+        out_ += "; scaffold: end\n";
         return std::move(out_);
     }
 
@@ -264,6 +271,7 @@ private:
             fan_ = bridge_fan;
             fan_changed_ = true;
         }
+        say_width(p.width);
         double feed = p.speed_mm_s * 60;
         bool first = true;
         for (std::size_t i = 1; i < p.points.size(); ++i) {
@@ -291,6 +299,22 @@ private:
         }
     }
 
+    // A file that says its beads' widths (";WIDTH:0.45", Bambu's "; LINE_WIDTH:
+    // 0.42") is read by viewers and by scaffold-check with the last width
+    // said: the support's own is said in the same words, and the slicer's
+    // given back after the block.
+    void say_width(double w) {
+        if (restore_width_.empty() || (width_said_ && std::abs(w - said_width_) < 1e-9)) return;
+        const std::size_t colon = restore_width_.find(':');
+        const bool space = colon + 1 < restore_width_.size() && restore_width_[colon + 1] == ' ';
+        out_ += restore_width_.substr(0, colon + 1);
+        if (space) out_ += ' ';
+        out_ += gcode::fixed(w, 3);
+        out_ += "\n";
+        width_said_ = true;
+        said_width_ = w;
+    }
+
     // The layer's height where the nozzle is; with bed levelling baked into
     // the file, the model's Z follows the bed's mesh and the support with it.
     double z_at(double x, double y) const { return layer_.z + (mesh_ ? mesh_->at(x, y) : 0.0); }
@@ -300,6 +324,9 @@ private:
     const layers::Layer& layer_;
     bool fw_;
     std::string_view restore_type_;
+    std::string_view restore_width_;  // the slicer's last width comment line, or empty
+    bool width_said_ = false;
+    double said_width_ = 0;
     gcode::Dialect dialect_;
     const layers::BedMesh* mesh_;  // null without levelling in the file
     double accel_;                  // mm/s^2, for the time estimate
@@ -316,6 +343,16 @@ private:
 // the object in the printer would drop it, and with it the support another
 // object stands on) or a tool change with its purge: gcode/blocks.hpp.
 // +1 opens a block, -1 closes it, 0 neither.
+// ";WIDTH:0.45" (PrusaSlicer, SuperSlicer), "; LINE_WIDTH: 0.42" (Bambu
+// Studio, OrcaSlicer): the width the readers give the beads that follow.
+bool is_width_comment(std::string_view t) {
+    const std::size_t semi = t.find_first_not_of(" \t");
+    if (semi == std::string_view::npos || t[semi] != ';') return false;
+    t.remove_prefix(semi + 1);
+    t.remove_prefix(std::min(t.size(), t.find_first_not_of(' ')));
+    return t.starts_with("WIDTH:") || t.starts_with("LINE_WIDTH:");
+}
+
 int block_marker(std::string_view t) {
     const gcode::BlockMarker m = gcode::block_marker(t);
     return m.kind == gcode::BlockKind::None ? 0 : (m.opens ? 1 : -1);
@@ -354,7 +391,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     st.absolute_e = !program.relative_e_at_start;
     gcode::Command cmd;
     std::vector<gcode::Move> scratch;
-    std::string last_type;
+    std::string last_type, last_width;
     std::uint32_t line = 0;
     std::uint64_t released = 0;  // text before this was lexed and released
     bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
@@ -369,6 +406,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
             if (cmd.letter == 0) {
                 std::size_t semi = text.find(";TYPE:");
                 if (semi != std::string_view::npos) last_type = std::string(text.substr(semi + 6));
+                else if (is_width_comment(text)) last_width = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
                 continue;
             }
             scratch.clear();
@@ -378,7 +416,7 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
         program.text.release(released, upto);
         released = upto;
-        BlockWriter w(st, settings, layer, fw, last_type, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh, accel);
+        BlockWriter w(st, settings, layer, fw, last_type, last_width, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh, accel);
         gcode::Edit e;
         e.line = at;
         e.text = w.write(lp.paths);

@@ -84,6 +84,15 @@ int find_root(std::vector<int>& parent, int k) {
 void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<std::size_t, Ring>>& loops) {
     const int n = static_cast<int>(loops.size());
     if (n < 2) return;
+    // A loop wholly inside another's is merged only with loops inside one
+    // too: a union with the outer loop would fill it in, and the hollow
+    // outer column holds nothing there for the inner one to stand on.
+    std::vector<char> inner(n, 0);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n && !inner[a]; ++b) {
+            const Ring &p = loops[a].second, &q = loops[b].second;
+            inner[a] = b != a && q.rc > p.rc && std::hypot(p.x - q.x, p.y - q.y) + p.rc < q.rc - 1e-6;
+        }
     std::vector<int> parent(n);
     for (int k = 0; k < n; ++k) parent[k] = k;
     bool any = false;
@@ -91,7 +100,7 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
         for (int b = a + 1; b < n; ++b) {
             const Ring &p = loops[a].second, &q = loops[b].second;
             const double d = std::hypot(p.x - q.x, p.y - q.y);
-            if (d < p.rc + q.rc - 1e-6 && d > std::abs(p.rc - q.rc) + 1e-6) {
+            if (inner[a] == inner[b] && d < p.rc + q.rc - 1e-6 && d > std::abs(p.rc - q.rc) + 1e-6) {
                 parent[find_root(parent, b)] = find_root(parent, a);
                 any = true;
             }

@@ -66,6 +66,27 @@ TEST(Obstacles, ACavityOfTheModelIsRoom) {
     EXPECT_EQ(infill.model_below(19, 110, 110, 1.0), 18);
 }
 
+TEST(Obstacles, InfillInsideAWallDoesNotFillTheCavityItWalls) {
+    // A cabin's wall of two perimeters with infill between them, as a
+    // slicer prints it: a short infill line's end lies on the inner
+    // perimeter. Its end is no hole's seed: the room inside stays room (a
+    // benchy's cabin was filled by such a dot, and a pillar stood on air).
+    Settings s;
+    auto st = hollow_box(gcode::Role::ExternalPerimeter);
+    for (layers::Layer& l : st.layers) {
+        outline(l, 100.9, 100.9, 119.1, 119.1, gcode::Role::Perimeter);
+        const auto n = static_cast<std::uint32_t>(l.segments.size());
+        l.segments.push_back({100.0f, 110.0f, 100.9f, 110.9f, 0.45f, gcode::Role::InternalInfill, n});
+        l.segments.push_back({100.9f, 105.0f, 100.9f, 105.0f, 0.45f, gcode::Role::InternalInfill, n + 1});  // a dot
+    }
+    const plan::Obstacles obs(st, s);
+    EXPECT_TRUE(obs.disc_clear(10, 110, 110, 1.0));
+    EXPECT_EQ(obs.model_below(19, 110, 110, 1.0), -1);
+    // A long infill line in the middle of the part still fills its holes.
+    const plan::Obstacles infill(hollow_box(), s);
+    EXPECT_FALSE(infill.disc_clear(10, 110, 110, 1.0));
+}
+
 TEST(Obstacles, NoPillarDownThroughAHollowPart) {
     Settings s;
     auto st = hollow_box();

@@ -229,3 +229,43 @@ TEST(Splice, TravelOverFreshSupportIsLifted) {
     const std::size_t after_c = block.find('\n', c_start);
     EXPECT_EQ(block.substr(after_c + 1, 9), "G1 Z0.4 F") << block;
 }
+
+// Viewers and scaffold-check give a bead the width last said in a comment
+// (";WIDTH:0.62", Bambu's "; LINE_WIDTH: 0.62"): the block says its own
+// beads' width in the file's words and gives the slicer's back after it, so
+// the support reads 0.45 mm wide and the model's beads keep theirs.
+TEST(Splice, SaysTheSupportsWidthAndGivesTheSlicersBack) {
+    for (const std::string say : {";WIDTH:", "; LINE_WIDTH: "}) {
+        SCOPED_TRACE(say);
+        scaffold::testing::SynthGcode g;
+        for (int l = 1; l <= 6; ++l) {
+            g.layer(0.2 * l);
+            g.raw(say + "0.62");
+            g.filled_rect(100, 100, 110, 110);
+        }
+        gcode::Program in = gcode::parse(g.str(), "in");
+        Settings s = build_settings(in, {}, {});
+        layers::LayerStack stack = layers::build_layers(in, s);
+        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        ASSERT_EQ(res.edits.size(), 5u);
+        EXPECT_NE(res.edits[0].text.find(say + "0.450\n"), std::string::npos) << res.edits[0].text;
+        EXPECT_NE(res.edits[0].text.find(say + "0.62\n; scaffold: end"), std::string::npos) << res.edits[0].text;
+        gcode::Program out = gcode::parse(render(in, res.edits), "out");
+        int support = 0, model = 0;
+        for (const auto& m : out.moves) {
+            if (m.kind != gcode::MoveKind::Extrude) continue;
+            const bool sup = m.role == gcode::Role::Support;
+            EXPECT_NEAR(m.width, sup ? s.support_width : 0.62, 1e-6) << "line " << m.line + 1;
+            (sup ? support : model)++;
+        }
+        EXPECT_GT(support, 0);
+        EXPECT_GT(model, 0);
+    }
+    // A file that says no widths gets none.
+    gcode::Program in = gcode::parse(tower("", false, 0), "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+    ASSERT_FALSE(res.edits.empty());
+    EXPECT_EQ(res.edits[0].text.find("WIDTH"), std::string::npos);
+}

@@ -82,6 +82,34 @@ TEST(SupportPaths, ALoopInsideAnotherIsNotMerged) {
     EXPECT_EQ(lp->paths.size(), 2u);
 }
 
+TEST(SupportPaths, ALoopInsideARingIsNotSwallowedByTheRingsUnion) {
+    // A connector inside a wide column's ring crosses a loop that crosses
+    // the ring: the three were one union, the inner loop filled in, and on
+    // the layer the ring moved off it the inner loop stood on nothing. The
+    // ring merges with the loop crossing it; the inner loop stays a loop.
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold sc;
+    plan::Column wide = pillar(20, 20, 5), inner = pillar(21, 20, 5), beside = pillar(21.9, 20, 5);
+    wide.radius = 2.0;
+    wide.taper = 0.01;  // widened for the Standing rule: a single wall
+    wide.hold_z = 5;
+    inner.radius = beside.radius = 0.75;
+    sc.columns = {wide, inner, beside};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);
+    ASSERT_NE(lp, nullptr);
+    const double rc = plan::loop_shape(0.75, s.support_width).centre_radius;
+    int inner_loops = 0;
+    for (const auto& p : lp->paths) {
+        bool on_inner = true;
+        for (const auto& v : p.points) on_inner = on_inner && std::abs(std::hypot(v.x - 21, v.y - 20) - rc) < 1e-6;
+        inner_loops += on_inner;
+    }
+    EXPECT_EQ(inner_loops, 1);
+    EXPECT_EQ(lp->paths.size(), 2u);  // the inner loop, the outline of the ring and the loop beside
+}
+
 TEST(SupportPaths, ACrowdOfCrossingLoopsGivesClosedPaths) {
     // Thirty pillars crowded into 3 x 3 mm (near-coincident loops, loops
     // meeting at a point, chains): every path stays a closed ring and
