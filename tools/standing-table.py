@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Prints tools/standing-table's markdown from its WORK folder: one folder per
-model holding scaffold-check's JSON reports (in.json of the input alone, scS.json at --min-stiffness S
+model holding scaffold-check's JSON reports (in.json of the input alone,
+cura_in.json of Cura's no-support file of the model, scS.json at --min-stiffness S
 with its exit status in scS.rc, scS.at2.json the same output at the default
 2 N/mm; prusa/tree/normal.json the slicers' own supports checked alone, or
 NAME.missing when the slicer wrote no file).
@@ -48,13 +49,15 @@ def main(work):
     cols = SCAFFOLD + SLICERS
     head = ['model', 'no support min']
     for key, _ in cols:
+        if key == 'tree':
+            head.append('Cura no support min')
         head += ['%s mm' % SHORT[key], '%s min' % SHORT[key], '%s k' % SHORT[key]]
     print('| ' + ' | '.join(head) + ' |')
-    print('|---|---:|' + '---:|' * (3 * len(cols)))
+    print('|---|---:|' + '---:|' * (3 * len(cols) + 1))
     stats = {key: dict(models=0, with_support=0, stand=0, stand_rooted=0, check=0, travels=0, weak_travels=0, under_mm=0.0)
              for key, _ in cols}
     sums = {key: [0.0, 0.0] for key, _ in cols}
-    plain_min = 0.0
+    plain_min = cura_min = 0.0
     complete = []
     missing = []
     for m in models:
@@ -64,6 +67,10 @@ def main(work):
         plain_min += plain['print_time_s'] / 60 if plain else 0
         have_all = True
         for key, label in cols:
+            if key == 'tree':
+                cura = load(os.path.join(d, 'cura_in.json'))
+                row.append('%.1f' % (cura['print_time_s'] / 60) if cura else '–')
+                cura_min += cura['print_time_s'] / 60 if cura else 0
             r = load(os.path.join(d, key + '.json'))
             if r is None:
                 why = 'slicer wrote no file' if os.path.exists(os.path.join(d, key + '.missing')) else 'no report'
@@ -99,6 +106,8 @@ def main(work):
     if len(complete) == len(models):
         cells = ['**sum**', '%.1f' % plain_min]
         for key, _ in cols:
+            if key == 'tree':
+                cells.append('%.1f' % cura_min)
             cells += ['%.0f' % sums[key][0], '%.1f' % sums[key][1], '']
         print('| ' + ' | '.join(cells) + ' |')
     print()
