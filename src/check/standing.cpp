@@ -625,6 +625,15 @@ StandingReport standing(const gcode::Program& program, const layers::LayerStack&
 }
 
 void standing_failures(const StandingReport& r, std::vector<std::string>& failures) {
+    // METHOD's travel rule, for the support added: no travel over it while
+    // it is fresh (the slicers' own supports cross theirs by the thousand:
+    // reported, not failed). A rule of its own, whatever --min-stiffness.
+    if (r.added.travels > 0) {
+        const TravelCrossing& t = r.added.first_travels.front();
+        failures.push_back(std::to_string(r.added.travels) + " travels cross fresh support without a lift (the first at line " +
+                           std::to_string(t.line + 1) + ", z " + fixed(t.z, 2) + " around (" + fixed(t.x, 1) + ", " +
+                           fixed(t.y, 1) + "))");
+    }
     if (!(r.min_stiffness > 0) || r.added.under == 0) return;
     std::string what = std::to_string(r.added.under) + " support islands under " + fixed(r.min_stiffness, 2) + " N/mm";
     if (!r.added.weakest.empty()) {

@@ -18,6 +18,8 @@ constexpr double kEps = 1e-6;
 // Every angle of a tie's triangle at least this: three columns not on one
 // line (METHOD: two of their directions from the node 60 degrees apart).
 constexpr double kMinAngleDeg = 30.0;
+// The margin over --min-stiffness a column keeps with its connectors' give.
+constexpr double kGiveMargin = 1.1;
 
 const Column* piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
     for (int i : chain.pieces) {
@@ -169,7 +171,12 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         if (braced[wi]) continue;
         const PillarChain W = chains[wi];
         if (W.hold - W.base < kBraceStep) continue;  // short: it stands by itself
-        if (1 / chain_compliance(W, W.hold, sc, stack, s) >= target) continue;
+        // With what stands on it too: a column under a bar end stands the
+        // rule at the top of the bar's connectors only if it leaves them
+        // their give (a capped foot beside a skirt can take that), judged
+        // with a smaller margin (the give is the connectors' worst case).
+        const double chain = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
+        if (1 / chain >= target && 1 / (chain + give) >= kGiveMargin * s.min_stiffness) continue;
         std::vector<double> levels;
         for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) {
             const double b = snap_down(want);

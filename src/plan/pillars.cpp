@@ -110,21 +110,28 @@ double widest_clear(const Obstacles& obs, int layer, double x, double y, double 
 }
 
 // A loop rests on the one below while no point of it moves out by more than
-// the shift limit; a capped radius changes by at most this share of it per
-// layer, so that a step aside on the same layer still leaves a margin.
+// the shift limit (its centre's step plus its radius's change); a capped
+// radius changes by what the centre's step leaves of it, and by at least
+// this share of it per layer.
 constexpr double kCapChange = 0.2;
 
-// Caps limited to change by kCapChange of the shift limit per layer, from
-// the capped layers outwards (only ever lowered: the clearance found holds).
+// Caps limited to change per layer by what the shift limit leaves beside
+// the centre's step, from the capped layers outwards (only ever lowered:
+// the clearance found holds). A column capped beside a skirt on the first
+// layer so widens to its taper within a few layers: the lowest part, with
+// the longest lever, is where its stiffness comes from.
 void smooth_caps(std::vector<Step>& path, const Column& proto, const layers::LayerStack& stack, int top_layer,
                  const Settings& s) {
     if (std::none_of(path.begin(), path.end(), [](const Step& st) { return st.cap > 0; })) return;
     const double none = std::numeric_limits<double>::infinity();
     std::vector<double> cap(path.size());
     for (std::size_t i = 0; i < path.size(); ++i) cap[i] = path[i].cap > 0 ? path[i].cap : none;
-    const double d = kCapChange * loop_shift_limit(stack.layers[top_layer].height, s);
-    for (std::size_t i = 1; i < cap.size(); ++i) cap[i] = std::min(cap[i], cap[i - 1] + d);
-    for (std::size_t i = cap.size() - 1; i > 0; --i) cap[i - 1] = std::min(cap[i - 1], cap[i] + d);
+    const double limit = loop_shift_limit(stack.layers[top_layer].height, s);
+    std::vector<double> d(path.size(), 0.0);  // d[i]: between path[i - 1] and path[i]
+    for (std::size_t i = 1; i < path.size(); ++i)
+        d[i] = std::max(kCapChange * limit, limit - std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y));
+    for (std::size_t i = 1; i < cap.size(); ++i) cap[i] = std::min(cap[i], cap[i - 1] + d[i]);
+    for (std::size_t i = cap.size() - 1; i > 0; --i) cap[i - 1] = std::min(cap[i - 1], cap[i] + d[i]);
     for (std::size_t i = 0; i < path.size(); ++i) {
         const double r = column_radius_at(proto, path[i].z, s);
         path[i].cap = cap[i] < r - 1e-9 ? std::max(cap[i], proto.radius) : 0.0;
@@ -348,6 +355,7 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
     // METHOD's Standing rule: widened downwards for what stands on it, as
     // if it stood on the bed until its base is known.
     proto.hold_z = std::max(proto.z1, hold);
+    proto.give = give;
     // `stiff`: the share of the taper the rule asks for; negative: the plain
     // column of old, with its neck.
     if (stiff >= 0) {

@@ -30,6 +30,9 @@ struct Column {
     // hold_z, the top of what stands on the column (0: no taper).
     double taper = 0;
     double hold_z = 0;
+    // What stands on it up to hold_z (connectors on the bar it holds) gives
+    // this much more, mm/N, in series: the column may give the rest.
+    double give = 0;
     // Where the model comes close the taper stops growing: the radius is at
     // most this (0: no cap), never under `radius`. One value per piece.
     double max_radius = 0;

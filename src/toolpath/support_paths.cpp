@@ -80,8 +80,33 @@ int find_root(std::vector<int>& parent, int k) {
 // (what lies inside it is the filled footprint that holds the next layer).
 // A loop inside another is left alone: the column above may stand on it.
 // `loops` are the indices in `paths` of the single-wall loops, with their
-// rings.
-void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<std::size_t, Ring>>& loops) {
+// rings. A hole of the union is outlined only on the bed, or where the
+// layer below (`below`, null if none) printed beads within `reach` of all
+// its outline:
+// where loops close round a hole that was inside the union below, its
+// outline would stand over the hollow of that union, on nothing.
+// Whether every vertex of `ring` lies within `reach` of a bead of `below`.
+template <class R>
+bool held_from(const std::vector<Path>* below, const R& ring, double reach) {
+    if (!below) return false;
+    for (const auto& v : ring) {
+        bool near = false;
+        for (const Path& p : *below) {
+            for (std::size_t i = 1; i < p.points.size() && !near; ++i) {
+                const Point &a = p.points[i - 1], &b = p.points[i];
+                const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+                const double t = l2 > 0 ? std::clamp(((v.x() - a.x) * dx + (v.y() - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
+                near = std::hypot(v.x() - a.x - dx * t, v.y() - a.y - dy * t) <= reach;
+            }
+            if (near) break;
+        }
+        if (!near) return false;
+    }
+    return true;
+}
+
+void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<std::size_t, Ring>>& loops,
+                          bool on_bed, const std::vector<Path>* below, double reach) {
     const int n = static_cast<int>(loops.size());
     if (n < 2) return;
     // A loop wholly inside another's is merged only with loops inside one
@@ -149,7 +174,8 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
             // its outline would be a speck, moving from layer to layer with
             // the slanted loops that make it, over nothing.
             for (const auto& hole : poly.inners())
-                if (std::abs(bg::area(hole)) >= proto.width * proto.width) add(hole);
+                if (std::abs(bg::area(hole)) >= proto.width * proto.width && (on_bed || held_from(below, hole, reach)))
+                    add(hole);
         }
     }
     std::vector<Path> kept;
@@ -256,6 +282,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 next[l] = k;
                 break;
             }
+    std::vector<int> printed_at(stack.layers.size(), -1);  // index in out.layers
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
@@ -328,7 +355,9 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 single_loops.push_back({lp.paths.size() - 1, rings.back()});
             }
         }
-        merge_crossing_loops(lp.paths, single_loops);
+        const int below = layer.below >= 0 ? printed_at[layer.below] : -1;
+        merge_crossing_loops(lp.paths, single_loops, first_layer, below >= 0 ? &out.layers[below].paths : nullptr,
+                             plan::loop_shift_limit(layer.height, s));
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
@@ -350,6 +379,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 const Point &a = lp.paths[i - 1].points.back(), &b = lp.paths[i].points.front();
                 lp.paths[i].retract = !obstacles->segment_clear(l, a.x, a.y, b.x, b.y, s.support_width);
             }
+        printed_at[l] = static_cast<int>(out.layers.size());
         out.layers.push_back(std::move(lp));
     }
     return out;

@@ -256,8 +256,15 @@ TEST(Standing, TravelOverFreshSupport) {
     // It first comes within 0.2 mm of the ring's outer edge (x 110 - 1.0).
     EXPECT_NEAR(crossed.standing.added.first_travels[0].x, 108.8, 0.15);
     EXPECT_EQ(crossed.standing.added.weak_travels, 0);  // a 1 mm ring: k = 7097.8 N/mm
-    EXPECT_EQ(scene(1).standing.added.travels, 0);
-    EXPECT_EQ(scene(2).standing.added.travels, 0);
+    // METHOD: no travel may cross fresh support: a failure, however stiff.
+    EXPECT_FALSE(crossed.ok());
+    ASSERT_FALSE(crossed.failures.empty());
+    EXPECT_NE(crossed.failures.back().find("5 travels cross fresh support"), std::string::npos) << crossed.failures.back();
+    const auto lifted = scene(1), away = scene(2);
+    EXPECT_EQ(lifted.standing.added.travels, 0);
+    EXPECT_EQ(away.standing.added.travels, 0);
+    EXPECT_TRUE(lifted.ok()) << check::report_text(lifted);
+    EXPECT_TRUE(away.ok()) << check::report_text(away);
 }
 
 TEST(Standing, TheOriginalsSupportIsReportedApart) {

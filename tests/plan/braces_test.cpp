@@ -124,3 +124,21 @@ TEST_F(BraceScene, StiffColumnsAndTheRuleOffTieNothing) {
     s.min_stiffness = 0;
     EXPECT_EQ(plan::add_braces(tall, st, obs, s, {}), 0);
 }
+
+// A column under a bar end leaves its connectors their give. A 13 mm plain
+// ring: (13^3 / 3 - 65 x 0.2^3 / 12) / 2303.22 = 732.29 / 2303.22 =
+// 0.31794 mm/N, 3.145 N/mm alone, over the 2.5 aimed at. With 0.2 mm/N of
+// connectors on it, 1 / 0.51794 = 1.931 N/mm: under 1.1 x 2 = 2.2, tied at
+// 10 mm (one level: three bars, two helpers). With 0.1 mm/N, 2.393: left alone.
+TEST_F(BraceScene, AColumnThatLeavesItsConnectorsTooLittleIsBraced) {
+    plan::Column c = plain(40, 40, 13);
+    sc.columns.push_back(c);
+    EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(sc)[0], 13, sc, st, s), 0.31794, 1e-5);
+    sc.columns[0].give = 0.2;
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 3);
+    for (const plan::Bridge& b : sc.bridges) EXPECT_NEAR(b.z, 10, 1e-6);
+    plan::Scaffold light;
+    c.give = 0.1;
+    light.columns.push_back(c);
+    EXPECT_EQ(plan::add_braces(light, st, obs, s, {}), 0);
+}

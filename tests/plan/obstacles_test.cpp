@@ -288,7 +288,9 @@ TEST(PlanPillars, AColumnIsAsWideAsTheRoomOnEachLayer) {
         ADD_FAILURE() << "no piece at z " << z;
         return 0.0;
     };
-    const double step = 0.2 * plan::loop_shift_limit(0.2, s) + full * 0.2 + 1e-9;
+    // Straight down, so a loop's radius may change by the whole shift limit
+    // (the taper's own change per layer aside).
+    const double step = plan::loop_shift_limit(0.2, s) + full * 0.2 + 1e-9;
     double below = radius_at(st.layers[0].z);
     for (int l = 1; l < 180; ++l) {  // below the tip
         const double z = st.layers[l].z, r = radius_at(z);
