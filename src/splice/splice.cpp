@@ -339,10 +339,6 @@ private:
     std::string out_;
 };
 
-// Support is never spliced into an object's labelled block (cancelling
-// the object in the printer would drop it, and with it the support another
-// object stands on) or a tool change with its purge: gcode/blocks.hpp.
-// +1 opens a block, -1 closes it, 0 neither.
 // ";WIDTH:0.45" (PrusaSlicer, SuperSlicer), "; LINE_WIDTH: 0.42" (Bambu
 // Studio, OrcaSlicer): the width the readers give the beads that follow.
 bool is_width_comment(std::string_view t) {
@@ -353,6 +349,10 @@ bool is_width_comment(std::string_view t) {
     return t.starts_with("WIDTH:") || t.starts_with("LINE_WIDTH:");
 }
 
+// Support is never spliced into an object's labelled block (cancelling
+// the object in the printer would drop it, and with it the support another
+// object stands on) or a tool change with its purge: gcode/blocks.hpp.
+// +1 opens a block, -1 closes it, 0 neither.
 int block_marker(std::string_view t) {
     const gcode::BlockMarker m = gcode::block_marker(t);
     return m.kind == gcode::BlockKind::None ? 0 : (m.opens ? 1 : -1);
