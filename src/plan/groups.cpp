@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -152,7 +153,7 @@ int worker_count(std::size_t groups, int threads) {
 }
 
 void for_each_group(std::size_t groups, int workers, const std::function<std::size_t(std::size_t)>& size,
-                    const std::function<void(std::size_t, int)>& job) {
+                    const std::function<void(std::size_t, int)>& job, double start_after_s) {
     std::vector<std::size_t> order(groups);
     std::iota(order.begin(), order.end(), 0);
     std::vector<std::size_t> sizes(groups);
@@ -160,7 +161,12 @@ void for_each_group(std::size_t groups, int workers, const std::function<std::si
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
     std::atomic<std::size_t> next{0};
     std::vector<std::exception_ptr> failed(groups);
+    const auto start = std::chrono::steady_clock::now();
+    const auto wait = std::chrono::duration<double>(start_after_s);
     auto run = [&](int worker) {
+        if (worker > 0)
+            while (next < groups && std::chrono::steady_clock::now() - start < wait)
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
         for (std::size_t k; (k = next++) < groups;) {
             try {
                 job(order[k], worker);

@@ -45,8 +45,11 @@ int worker_count(std::size_t groups, int threads);
 // [0, workers)), larger groups first so the threads end close together; a
 // job's exception reaches the caller (the lowest group's, as on one thread).
 // `size(group)` ranks the groups; the jobs must not depend on the order.
+// Workers after the first start only once the groups have taken
+// `start_after_s` (a worker may cost a set-up of its own, which a light
+// plate does not pay back) and some are still left.
 void for_each_group(std::size_t groups, int workers, const std::function<std::size_t(std::size_t)>& size,
-                    const std::function<void(std::size_t, int)>& job);
+                    const std::function<void(std::size_t, int)>& job, double start_after_s = 0);
 
 // One group's plan: its points (those of group_points, then any it added)
 // and its scaffold, with indices into those points.
