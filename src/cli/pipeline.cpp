@@ -377,9 +377,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::vector<plan::PointGroup> groups =
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings));
-    SharedCavities cavities(stack);
+    auto cavities = std::make_unique<SharedCavities>(stack);
     if (groups.size() <= 1) {
-        GroupPlanned one = plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress);
+        GroupPlanned one = plan_group(detected, overhangs, stack, *obstacles, settings, *cavities, log, &progress);
         points = std::move(one.points);
         scaffold = std::move(one.scaffold);
         paths = std::move(one.paths);
@@ -403,7 +403,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, nullptr);
+                                               *cavities, log, nullptr);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
             },
             kSecondThreadAfter);
@@ -413,6 +413,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     }
     time.lap("plan");
     obstacles.reset();  // one raster per layer: free before the text is read again
+    cavities.reset();
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())
         gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
