@@ -21,6 +21,9 @@ struct Request {
     // Progress lines (at info level, so -q silences them) start once a run
     // has taken this long: a short run says nothing until its summary.
     double progress_after_s = 2.0;
+    // Threads for planning independent groups of points (0: the machine's
+    // cores); the plan is the same for any count.
+    int threads = 0;
     // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
     // from here instead of reading `input`, and the output kept here instead
     // of written.

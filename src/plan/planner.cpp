@@ -280,7 +280,8 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, doubl
 }
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
-                       const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers) {
+                       const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers,
+                       const std::function<const Cavities&()>& shared_cavities) {
     // Layers by z without purge lines: the layer above a height.
     LayerIndex by_z;
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
@@ -301,6 +302,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     };
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
         if (is_forbidden(z, x0, y0, x1, y1)) return true;
+        if (shared_cavities) return shared_cavities().bar_trapped(x0, y0, x1, y1, z);
         if (!cavities) cavities.emplace(stack, obs);
         return cavities->bar_trapped(x0, y0, x1, y1, z);
     };

@@ -3,12 +3,14 @@
 // report: horizontal bridges carry several support points through slanted
 // connectors, so only the bridge ends and the points left over need pillars.
 // Hands on a Scaffold (bridges, connectors, pillars) in plain geometry.
+#include <functional>
 #include <optional>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
 #include "overhang/overhangs.hpp"
 #include "plan/candidates.hpp"
+#include "plan/cavities.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/scaffold.hpp"
 
@@ -44,9 +46,11 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& bar, dou
 // The pipeline's: the same bridges, but every pillar (under points and
 // bridge ends) is dropped by drop_pillar, which steps around the model, and
 // a bridge is placed only where both its ends get one. Plans made again on
-// the same stack, obstacles and settings may share `answers`.
+// the same stack, obstacles and settings may share `answers`, and the
+// model's hollows (`cavities`; empty: mapped here when the first bar is taken).
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                        const Obstacles& obstacles, const Settings& settings,
-                       const std::vector<Bridge>& forbidden = {}, std::shared_ptr<ModelAnswers> answers = nullptr);
+                       const std::vector<Bridge>& forbidden = {}, std::shared_ptr<ModelAnswers> answers = nullptr,
+                       const std::function<const Cavities&()>& cavities = nullptr);
 
 }  // namespace scaffold::plan

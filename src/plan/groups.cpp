@@ -1,0 +1,218 @@
+#include "plan/groups.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <thread>
+
+#include "plan/braces.hpp"
+#include "plan/lean_in.hpp"
+#include "plan/pillars.hpp"
+
+namespace scaffold::plan {
+
+double group_reach(const Settings& s) {
+    // A bar carries points up to its length along it and the offset either
+    // side: two of them that far apart. Its ends stand up to the offset off
+    // the points they were taken from, where a lower bar may carry them.
+    const double bar = std::hypot(s.bridge_max_length, 2 * s.bridge_max_offset) + s.bridge_max_offset;
+    // A brace ties columns up to kBraceReach apart, each of which may lean
+    // in to its point from up to kLeanInReach away.
+    const double brace = kBraceReach + 2 * kLeanInReach;
+    // Margin: a cover point stands in a point's share of the sheet, and a
+    // pillar branches off a trunk within kBranchSteer.
+    return std::max(bar, brace) + s.point_radius + kBranchSteer;
+}
+
+namespace {
+
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    // The lower root stays: roots are then each group's lowest index.
+    void join(int a, int b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+}  // namespace
+
+std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
+                                     double reach) {
+    const auto& pts = points.points;
+    const int n = static_cast<int>(pts.size());
+    if (n == 0) return {};
+    UnionFind uf(pts.size());
+    // Points by grid cell of side `reach`: a pair within reach is in
+    // neighbouring cells. An ordered map: no order from hashing.
+    std::map<std::pair<long, long>, std::vector<int>> grid;
+    auto cell_of = [reach](double v) { return static_cast<long>(std::floor(v / reach)); };
+    for (int i = 0; i < n; ++i) grid[{cell_of(pts[i].x), cell_of(pts[i].y)}].push_back(i);
+    const double r2 = reach * reach;
+    for (const auto& [key, in_cell] : grid)
+        for (long dx = -1; dx <= 1; ++dx)
+            for (long dy = -1; dy <= 1; ++dy) {
+                auto it = grid.find({key.first + dx, key.second + dy});
+                if (it == grid.end()) continue;
+                for (int i : in_cell)
+                    for (int j : it->second) {
+                        if (j <= i) continue;
+                        const double ex = pts[i].x - pts[j].x, ey = pts[i].y - pts[j].y;
+                        if (ex * ex + ey * ey <= r2) uf.join(i, j);
+                    }
+            }
+
+    // Each overhang region goes with the points nearest to its first and
+    // last cells (those on its layer first): points added to cover it later
+    // stand in it, so it must be planned with them.
+    std::map<int, std::vector<int>> by_layer;
+    for (int i = 0; i < n; ++i) by_layer[pts[i].layer].push_back(i);
+    auto nearest = [&](int layer, double x, double y) {
+        auto it = by_layer.find(layer);
+        int best = -1;
+        double best_d = std::numeric_limits<double>::infinity();
+        auto scan = [&](int i) {
+            const double d = std::hypot(pts[i].x - x, pts[i].y - y);
+            if (d < best_d) best_d = d, best = i;
+        };
+        if (it != by_layer.end())
+            for (int i : it->second) scan(i);
+        else
+            for (int i = 0; i < n; ++i) scan(i);
+        return best;
+    };
+    struct Owned {
+        int layer_pos, point;
+        std::vector<layers::Cell> cells;
+    };
+    std::vector<Owned> regions;
+    for (int k = 0; k < static_cast<int>(overhangs.layers.size()); ++k) {
+        const overhang::OverhangLayer& ol = overhangs.layers[k];
+        for (std::vector<layers::Cell>& comp : layers::components(ol.cells)) {
+            const layers::Cell a = comp.front(), b = comp.back();
+            const int pa = nearest(ol.layer, ol.cells.cx(a.i), ol.cells.cy(a.j));
+            const int pb = nearest(ol.layer, ol.cells.cx(b.i), ol.cells.cy(b.j));
+            uf.join(pa, pb);
+            regions.push_back({k, pa, std::move(comp)});
+        }
+    }
+
+    std::vector<int> group_of(pts.size(), -1);
+    std::vector<PointGroup> out;
+    for (int i = 0; i < n; ++i) {
+        const int root = uf.find(i);
+        if (group_of[root] < 0) {
+            group_of[root] = static_cast<int>(out.size());
+            out.emplace_back();
+        }
+        out[group_of[root]].index.push_back(i);
+    }
+    for (Owned& r : regions) {
+        PointGroup& g = out[group_of[uf.find(r.point)]];
+        if (g.cells.empty() || g.cells.back().first != r.layer_pos) g.cells.push_back({r.layer_pos, {}});
+        auto& cells = g.cells.back().second;
+        cells.insert(cells.end(), r.cells.begin(), r.cells.end());
+    }
+    return out;
+}
+
+overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group) {
+    overhang::SupportPoints out;
+    out.points.reserve(group.index.size());
+    for (int i : group.index) out.points.push_back(points.points[i]);
+    return out;
+}
+
+overhang::Overhangs group_overhangs(const overhang::Overhangs& overhangs, const PointGroup& group) {
+    overhang::Overhangs out;
+    for (const auto& [k, cells] : group.cells) {
+        const overhang::OverhangLayer& ol = overhangs.layers[k];
+        overhang::OverhangLayer mine{ol.layer, ol.cells.empty_like(), 0};
+        for (const layers::Cell& c : cells) mine.cells.set(c.i, c.j);
+        mine.area_mm2 = static_cast<double>(cells.size()) * ol.cells.cell_area();
+        out.area_mm2 += mine.area_mm2;
+        out.layers.push_back(std::move(mine));
+    }
+    return out;
+}
+
+int worker_count(std::size_t groups, int threads) {
+    if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(threads), std::max<std::size_t>(groups, 1)));
+}
+
+void for_each_group(std::size_t groups, int workers, const std::function<std::size_t(std::size_t)>& size,
+                    const std::function<void(std::size_t, int)>& job, double start_after_s) {
+    std::vector<std::size_t> order(groups);
+    std::iota(order.begin(), order.end(), 0);
+    std::vector<std::size_t> sizes(groups);
+    for (std::size_t g = 0; g < groups; ++g) sizes[g] = size(g);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> failed(groups);
+    const auto start = std::chrono::steady_clock::now();
+    const auto wait = std::chrono::duration<double>(start_after_s);
+    auto run = [&](int worker) {
+        if (worker > 0)
+            while (next < groups && std::chrono::steady_clock::now() - start < wait)
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        for (std::size_t k; (k = next++) < groups;) {
+            try {
+                job(order[k], worker);
+            } catch (...) {
+                failed[order[k]] = std::current_exception();
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    for (int w = 1; w < workers; ++w) pool.emplace_back(run, w);
+    run(0);
+    for (std::thread& t : pool) t.join();
+    for (const std::exception_ptr& e : failed)
+        if (e) std::rethrow_exception(e);
+}
+
+Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<PointGroup>& groups,
+                     std::vector<GroupPlan>& plans, overhang::SupportPoints& points) {
+    points.points = input.points;
+    points.overhang_area_mm2 = input.overhang_area_mm2;
+    Scaffold out;
+    for (std::size_t g = 0; g < plans.size(); ++g) {
+        const std::vector<int>& index = groups[g].index;
+        GroupPlan& plan = plans[g];
+        const std::size_t first_added = points.points.size();
+        points.points.insert(points.points.end(), plan.points.points.begin() + static_cast<long>(index.size()),
+                             plan.points.points.end());
+        auto renumber = [&](int i) {
+            if (i < 0) return i;
+            const auto u = static_cast<std::size_t>(i);
+            return u < index.size() ? index[u] : static_cast<int>(first_added + (u - index.size()));
+        };
+        for (Column& c : plan.scaffold.columns) {
+            c.point = renumber(c.point);
+            out.columns.push_back(std::move(c));
+        }
+        for (Bridge& b : plan.scaffold.bridges) {
+            for (int& p : b.points) p = renumber(p);
+            out.bridges.push_back(std::move(b));
+        }
+        for (int p : plan.scaffold.dropped_points) out.dropped_points.push_back(renumber(p));
+        out.unheld_bridge_ends.insert(out.unheld_bridge_ends.end(), plan.scaffold.unheld_bridge_ends.begin(),
+                                      plan.scaffold.unheld_bridge_ends.end());
+    }
+    std::sort(out.dropped_points.begin(), out.dropped_points.end());
+    return out;
+}
+
+}  // namespace scaffold::plan

@@ -1,0 +1,66 @@
+#pragma once
+// Independent parts of a plate: support points nothing the planner builds
+// can join or let affect each other (a bar, a brace, a connector, a column,
+// a cover point in their overhang region) are planned apart, each group with
+// its own rounds, on several threads; the plans are merged in group order,
+// so the plan is the same for any thread count.
+#include <cstddef>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "gcode/settings.hpp"
+#include "layers/regions.hpp"
+#include "overhang/overhangs.hpp"
+#include "plan/scaffold.hpp"
+
+namespace scaffold::plan {
+
+// Points farther apart than this (in XY) are never joined by one thing the
+// planner builds, nor affect each other's plan. See groups.cpp for the sum.
+double group_reach(const Settings& settings);
+
+struct PointGroup {
+    std::vector<int> index;  // its points' indices in the input, ascending
+    // Its share of the overhang cells: (position in Overhangs::layers, cells),
+    // ascending by position.
+    std::vector<std::pair<int, std::vector<layers::Cell>>> cells;
+};
+
+// Union-find over the points: two within `reach` of each other join, and so
+// do the points nearest to each end of one overhang region (8-connected
+// cells), which goes to their group. Groups ordered by their lowest index.
+std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
+                                     double reach);
+
+// The group's points, in the input's order (positions as PointGroup::index).
+overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group);
+// The group's overhang cells, on grids shaped like the input's, only on
+// layers where it has some.
+overhang::Overhangs group_overhangs(const overhang::Overhangs& overhangs, const PointGroup& group);
+
+// Workers for `groups` groups on `threads` threads (0: the machine's cores).
+int worker_count(std::size_t groups, int threads);
+// job(group, worker) for every group, on `workers` threads (worker in
+// [0, workers)), larger groups first so the threads end close together; a
+// job's exception reaches the caller (the lowest group's, as on one thread).
+// `size(group)` ranks the groups; the jobs must not depend on the order.
+// Workers after the first start only once the groups have taken
+// `start_after_s` (a worker may cost a set-up of its own, which a light
+// plate does not pay back) and some are still left.
+void for_each_group(std::size_t groups, int workers, const std::function<std::size_t(std::size_t)>& size,
+                    const std::function<void(std::size_t, int)>& job, double start_after_s = 0);
+
+// One group's plan: its points (those of group_points, then any it added)
+// and its scaffold, with indices into those points.
+struct GroupPlan {
+    overhang::SupportPoints points;
+    Scaffold scaffold;
+};
+// The plans as one, in group order: the input's points, then each group's
+// added points; columns, bridges, dropped points and unheld ends in group
+// order, indices renumbered to `points`.
+Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<PointGroup>& groups,
+                     std::vector<GroupPlan>& plans, overhang::SupportPoints& points);
+
+}  // namespace scaffold::plan

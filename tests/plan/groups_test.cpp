@@ -1,0 +1,188 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <tuple>
+
+#include "plan/groups.hpp"
+#include "plan/planner.hpp"
+
+using namespace scaffold;
+
+namespace {
+
+using Xyz = std::array<double, 3>;
+
+// Support points at (x, y, z) on 0.2 mm layers, in place_points' order (layer, y, x).
+overhang::SupportPoints points_of(std::vector<Xyz> xyz) {
+    std::sort(xyz.begin(), xyz.end(), [](const Xyz& a, const Xyz& b) {
+        return std::make_tuple(a[2], a[1], a[0]) < std::make_tuple(b[2], b[1], b[0]);
+    });
+    overhang::SupportPoints p;
+    for (auto [x, y, z] : xyz) p.points.push_back({x, y, z, static_cast<int>(std::lround(z / 0.2))});
+    return p;
+}
+
+plan::ModelView free_space() {
+    plan::ModelView m;
+    for (int i = 1; i <= 400; ++i) m.layer_tops.push_back(0.2 * i);
+    return m;
+}
+
+// `n` random points in a 30 x 30 mm square at each x origin.
+std::vector<Xyz> clusters(const std::vector<double>& origins, int n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> xy(0, 30), z(5, 40);
+    std::vector<Xyz> out;
+    for (double ox : origins)
+        for (int i = 0; i < n; ++i) out.push_back({ox + xy(rng), xy(rng), 0.2 * std::round(z(rng) / 0.2)});
+    return out;
+}
+
+using BridgeKey = std::tuple<double, double, double, double, double, std::vector<int>>;
+using ColumnKey = std::tuple<double, double, double, double, double, double, double, int, int>;
+
+// The plan as sorted geometry: the same structures in any order.
+std::pair<std::vector<BridgeKey>, std::vector<ColumnKey>> geometry(const plan::Scaffold& sc) {
+    std::vector<BridgeKey> b;
+    for (const plan::Bridge& x : sc.bridges) b.emplace_back(x.x0, x.y0, x.x1, x.y1, x.z, x.points);
+    std::vector<ColumnKey> c;
+    for (const plan::Column& x : sc.columns)
+        c.emplace_back(x.x0, x.y0, x.z0, x.x1, x.y1, x.z1, x.radius, static_cast<int>(x.base), x.point);
+    std::sort(b.begin(), b.end());
+    std::sort(c.begin(), c.end());
+    return {b, c};
+}
+
+// Every group planned alone, on `threads` threads, and merged.
+plan::Scaffold plan_in_groups(const overhang::SupportPoints& pts, const Settings& s, int threads) {
+    const auto groups = plan::point_groups(pts, {}, plan::group_reach(s));
+    std::vector<plan::GroupPlan> plans(groups.size());
+    const plan::ModelView m = free_space();
+    plan::for_each_group(
+        groups.size(), plan::worker_count(groups.size(), threads), [&](std::size_t g) { return groups[g].index.size(); },
+        [&](std::size_t g, int) {
+            plans[g].points = plan::group_points(pts, groups[g]);
+            plans[g].scaffold = plan::plan_scaffold(plans[g].points, m, s, 1);
+        });
+    overhang::SupportPoints merged;
+    plan::Scaffold out = plan::merge_plans(pts, groups, plans, merged);
+    EXPECT_EQ(merged.points.size(), pts.points.size());
+    return out;
+}
+
+}  // namespace
+
+TEST(GroupReach, CoversABarBetweenTwoCarriedPointsAndABrace) {
+    Settings s;
+    const double reach = plan::group_reach(s);
+    EXPECT_GE(reach, std::hypot(s.bridge_max_length, 2 * s.bridge_max_offset));
+    EXPECT_GE(reach, 20.0);
+    s.bridge_max_length = 60;
+    EXPECT_GE(plan::group_reach(s), std::hypot(60.0, 2 * s.bridge_max_offset));
+}
+
+TEST(PointGroups, NearPointsJoinFarOnesStayApartChainsJoin) {
+    Settings s;
+    const double r = plan::group_reach(s);
+    // 0 and 1 within reach; 2 within reach of 1 only (a chain); 3 far away.
+    overhang::SupportPoints p;
+    p.points = {{0, 0, 5, 25}, {r * 0.9, 0, 5, 25}, {r * 1.8, 0, 5, 25}, {r * 5, 0, 5, 25}, {r * 5, r * 0.5, 6, 30}};
+    const auto groups = plan::point_groups(p, {}, r);
+    ASSERT_EQ(groups.size(), 2u);
+    EXPECT_EQ(groups[0].index, (std::vector<int>{0, 1, 2}));
+    EXPECT_EQ(groups[1].index, (std::vector<int>{3, 4}));
+    // Just beyond reach: apart.
+    p.points = {{0, 0, 5, 25}, {r + 0.01, 0, 5, 25}};
+    EXPECT_EQ(plan::point_groups(p, {}, r).size(), 2u);
+    EXPECT_TRUE(plan::point_groups({}, {}, r).empty());
+}
+
+TEST(PointGroups, OverhangRegionsGoToTheGroupOfTheirPoints) {
+    Settings s;
+    const double r = plan::group_reach(s);
+    overhang::SupportPoints p;
+    p.points = {{10, 10, 5, 25}, {10 + 3 * r, 10, 5, 25}};
+    // Layer 25: a region under each point; layer 40: one under the second
+    // point only (on a layer without points: the nearest point's).
+    overhang::Overhangs o;
+    for (int layer : {25, 40}) {
+        overhang::OverhangLayer ol{layer, layers::BitGrid(0, 0, 4 * r + 20, 20, 0.5), 0};
+        for (double x0 : {8.0, 8.0 + 3 * r}) {
+            if (layer == 40 && x0 < 9) continue;
+            for (int i = ol.cells.col(x0); i <= ol.cells.col(x0 + 4); ++i)
+                for (int j = ol.cells.row(8); j <= ol.cells.row(12); ++j) ol.cells.set(i, j);
+        }
+        o.layers.push_back(std::move(ol));
+    }
+    const auto groups = plan::point_groups(p, o, r);
+    ASSERT_EQ(groups.size(), 2u);
+    const overhang::Overhangs a = plan::group_overhangs(o, groups[0]), b = plan::group_overhangs(o, groups[1]);
+    ASSERT_EQ(a.layers.size(), 1u);
+    EXPECT_EQ(a.layers[0].layer, 25);
+    EXPECT_TRUE(a.layers[0].cells.get(a.layers[0].cells.col(10), a.layers[0].cells.row(10)));
+    EXPECT_FALSE(a.layers[0].cells.get(a.layers[0].cells.col(10 + 3 * r), a.layers[0].cells.row(10)));
+    ASSERT_EQ(b.layers.size(), 2u);
+    EXPECT_EQ(b.layers[1].layer, 40);
+    EXPECT_FALSE(b.layers[0].cells.get(b.layers[0].cells.col(10), b.layers[0].cells.row(10)));
+    EXPECT_NEAR(a.area_mm2 + b.area_mm2, 3 * 9 * 9 * 0.25, 1e-9);
+}
+
+TEST(ForEachGroup, RunsEveryGroupOnceAndPassesTheFirstErrorOn) {
+    for (int workers : {1, 2, 3}) {
+        std::vector<std::atomic<int>> ran(7);
+        plan::for_each_group(7, workers, [](std::size_t g) { return g % 3; }, [&](std::size_t g, int w) {
+            EXPECT_LT(w, workers);
+            ++ran[g];
+        });
+        for (auto& r : ran) EXPECT_EQ(r.load(), 1);
+        EXPECT_THROW(plan::for_each_group(
+                         5, workers, [](std::size_t) { return 1; },
+                         [](std::size_t g, int) {
+                             if (g == 1 || g == 3) throw std::runtime_error(std::to_string(g));
+                         }),
+                     std::runtime_error);
+        try {
+            plan::for_each_group(5, workers, [](std::size_t) { return 1; }, [](std::size_t g, int) {
+                if (g == 1 || g == 3) throw std::runtime_error(std::to_string(g));
+            });
+        } catch (const std::runtime_error& e) {
+            EXPECT_STREQ(e.what(), "1");
+        }
+    }
+}
+
+TEST(GroupPlans, SamePlanOnAnyThreadCountAndAsTheWholePlate) {
+    Settings s;
+    // Three clusters farther apart than the reach, plus one point between
+    // the last two that joins them.
+    const double r = plan::group_reach(s);
+    std::vector<Xyz> xyz = clusters({0, 30 + 1.5 * r, 60 + 3 * r, 90 + 4.2 * r}, 40, 7);
+    const overhang::SupportPoints pts = points_of(xyz);
+    const auto groups = plan::point_groups(pts, {}, r);
+    ASSERT_EQ(groups.size(), 4u);
+    const plan::Scaffold one = plan_in_groups(pts, s, 1);
+    EXPECT_GT(one.bridges.size(), 8u);
+    for (int threads : {2, 3}) {
+        const plan::Scaffold more = plan_in_groups(pts, s, threads);
+        ASSERT_EQ(one.bridges.size(), more.bridges.size());
+        ASSERT_EQ(one.columns.size(), more.columns.size());
+        for (std::size_t i = 0; i < one.bridges.size(); ++i) {
+            const auto &x = one.bridges[i], &y = more.bridges[i];
+            EXPECT_EQ(std::tie(x.x0, x.y0, x.x1, x.y1, x.z, x.points, x.gain, x.score),
+                      std::tie(y.x0, y.y0, y.x1, y.y1, y.z, y.points, y.gain, y.score)) << "bridge " << i;
+        }
+        for (std::size_t i = 0; i < one.columns.size(); ++i) {
+            const auto &x = one.columns[i], &y = more.columns[i];
+            EXPECT_EQ(std::tie(x.x0, x.y0, x.z0, x.x1, x.y1, x.z1, x.radius, x.base, x.top, x.point),
+                      std::tie(y.x0, y.y0, y.z0, y.x1, y.y1, y.z1, y.radius, y.base, y.top, y.point)) << "column " << i;
+        }
+        EXPECT_EQ(one.dropped_points, more.dropped_points);
+    }
+    // The groups planned apart build what the whole plate's plan builds.
+    EXPECT_EQ(geometry(one), geometry(plan::plan_scaffold(pts, free_space(), s, 1)));
+}
