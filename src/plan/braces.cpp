@@ -175,8 +175,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // rule at the top of the bar's connectors only if it leaves them
         // their give (a capped foot beside a skirt can take that), judged
         // with a smaller margin (the give is the connectors' worst case).
-        const double chain = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
-        if (1 / chain >= target && 1 / (chain + give) >= kGiveMargin * s.min_stiffness) continue;
+        const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
+        if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
         std::vector<double> levels;
         for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) {
             const double b = snap_down(want);
