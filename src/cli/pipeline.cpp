@@ -345,7 +345,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
                  own_support_mm);
     // Print-time change, by the validator's estimate; the written file is
     // read back for it, so only when that is cheap.
-    bool estimate_time = (req.output_text || req.output != "-") && program.text.size() < 50'000'000;
+    // (Read back from the output: not from stdout, a device or a pipe.)
+    bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
+                         program.text.size() < 50'000'000;
     double time_before = estimate_time ? check::estimate_print_time(program) : 0;
     // Nothing below reads the moves (the splice re-lexes the lines): free
     // them, the largest part of a big file's memory.

@@ -87,6 +87,9 @@ std::string replace_file(const std::string& tmp, const std::string& path) {
     return n > 0 ? std::string(msg, n) : "error " + std::to_string(::GetLastError());
 }
 constexpr const char* kDirSeparators = "/\\:";
+// The NUL device: written to, never replaced.
+bool device_path(const std::string& path) { return _stricmp(path.c_str(), "NUL") == 0; }
+std::string resolved(const std::string& path) { return path; }
 #else
 int open_new(const std::string& tmp) { return ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644); }
 void keep_mode(const std::string& path, int fd) {
@@ -99,6 +102,23 @@ std::string replace_file(const std::string& tmp, const std::string& path) {
     return ::rename(tmp.c_str(), path.c_str()) == 0 ? std::string() : std::strerror(errno);
 }
 constexpr const char* kDirSeparators = "/";
+// A device or a pipe (/dev/null, /dev/stdout, a FIFO): written to, never
+// replaced (a rename over /dev/null would leave a plain file there).
+bool device_path(const std::string& path) {
+    struct stat st{};
+    return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode);
+}
+// A symbolic link's target, replaced in its place: renamed over the link,
+// the link would become a file of its own and its target stay unchanged.
+std::string resolved(const std::string& path) {
+    struct stat st{};
+    if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
+    char* real = ::realpath(path.c_str(), nullptr);
+    if (!real) return path;
+    std::string out(real);
+    std::free(real);
+    return out;
+}
 #endif
 
 }  // namespace
@@ -160,18 +180,10 @@ std::optional<std::string> binary_output(const Program& p, std::vector<Edit>& ed
 
 namespace {
 
-// Writes what `emit` puts out to `path` ("-": stdout) through a temporary
-// file beside it, renamed over it once complete.
+// Writes what `emit` puts out to the file `path` through a temporary file
+// beside it, renamed over it once complete.
 template <class Emit>
-void write_atomically(const std::string& path, Emit emit) {
-    if (path == "-") {
-#ifdef _WIN32
-        (void)::_setmode(::_fileno(stdout), _O_BINARY);  // no '\n' -> CRLF translation
-#endif
-        if (!emit(stdout) || std::fflush(stdout) != 0)
-            throw Error("<stdout>", 0, std::string("write failed: ") + std::strerror(errno));
-        return;
-    }
+void write_file_atomically(const std::string& path, Emit emit) {
     // The temporary file goes beside the target (same directory, same drive).
     std::size_t cut = path.find_last_of(kDirSeparators);
     cut = cut == std::string::npos ? 0 : cut + 1;
@@ -203,7 +215,33 @@ void write_atomically(const std::string& path, Emit emit) {
     }
 }
 
+// Writes what `emit` puts out to `path`: "-" is stdout, a device or a pipe
+// is written to, a file is replaced whole (write_file_atomically).
+template <class Emit>
+void write_atomically(const std::string& path, Emit emit) {
+    if (path == "-") {
+#ifdef _WIN32
+        (void)::_setmode(::_fileno(stdout), _O_BINARY);  // no '\n' -> CRLF translation
+#endif
+        if (!emit(stdout) || std::fflush(stdout) != 0)
+            throw Error("<stdout>", 0, std::string("write failed: ") + std::strerror(errno));
+        return;
+    }
+    if (device_path(path)) {
+        std::FILE* out = std::fopen(path.c_str(), "wb");
+        if (!out) throw Error(path, 0, std::string("cannot open the output: ") + std::strerror(errno));
+        bool ok = emit(out) && std::fflush(out) == 0;
+        const int err = errno;
+        ok = std::fclose(out) == 0 && ok;
+        if (!ok) throw Error(path, 0, std::string("write failed: ") + std::strerror(err));
+        return;
+    }
+    write_file_atomically(resolved(path), emit);
+}
+
 }  // namespace
+
+bool is_device(const std::string& path) { return path != "-" && device_path(path); }
 
 void write_output(const std::string& path, const Program& program, std::vector<Edit> edits, OutputFormat format) {
     std::optional<std::string> binary = binary_output(program, edits, format);

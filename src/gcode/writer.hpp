@@ -30,7 +30,12 @@ std::string render_edited(const Program& program, std::vector<Edit> edits);
 
 enum class OutputFormat : std::uint8_t { SameAsInput, Ascii, Binary };
 
-// Writes to `path` atomically ("-" writes to stdout). Throws scaffold::Error.
+// Whether `path` is a device or a pipe (/dev/null, a FIFO; NUL on Windows):
+// written to as it is, never replaced, and nothing can be read back from it.
+bool is_device(const std::string& path);
+
+// Writes to `path` atomically ("-" writes to stdout, a device or a pipe is
+// written to, a symbolic link's target replaced). Throws scaffold::Error.
 // Binary G-code keeps a binary input's settings; unchanged, its bytes.
 void write_output(const std::string& path, const Program& program, std::vector<Edit> edits,
                   OutputFormat format = OutputFormat::SameAsInput);
