@@ -10,27 +10,21 @@
 
 #include "plan/groups.hpp"
 #include "plan/planner.hpp"
+#include "support/plan_scenes.hpp"
 
 using namespace scaffold;
 
 namespace {
 
-using Xyz = std::array<double, 3>;
+using test::free_space;
+using test::Xyz;
 
 // Support points at (x, y, z) on 0.2 mm layers, in place_points' order (layer, y, x).
 overhang::SupportPoints points_of(std::vector<Xyz> xyz) {
     std::sort(xyz.begin(), xyz.end(), [](const Xyz& a, const Xyz& b) {
         return std::make_tuple(a[2], a[1], a[0]) < std::make_tuple(b[2], b[1], b[0]);
     });
-    overhang::SupportPoints p;
-    for (auto [x, y, z] : xyz) p.points.push_back({x, y, z, static_cast<int>(std::lround(z / 0.2))});
-    return p;
-}
-
-plan::ModelView free_space() {
-    plan::ModelView m;
-    for (int i = 1; i <= 400; ++i) m.layer_tops.push_back(0.2 * i);
-    return m;
+    return test::points_of(xyz);
 }
 
 // `n` random points in a 30 x 30 mm square at each x origin.
@@ -167,22 +161,7 @@ TEST(GroupPlans, SamePlanOnAnyThreadCountAndAsTheWholePlate) {
     ASSERT_EQ(groups.size(), 4u);
     const plan::Scaffold one = plan_in_groups(pts, s, 1);
     EXPECT_GT(one.bridges.size(), 8u);
-    for (int threads : {2, 3}) {
-        const plan::Scaffold more = plan_in_groups(pts, s, threads);
-        ASSERT_EQ(one.bridges.size(), more.bridges.size());
-        ASSERT_EQ(one.columns.size(), more.columns.size());
-        for (std::size_t i = 0; i < one.bridges.size(); ++i) {
-            const auto &x = one.bridges[i], &y = more.bridges[i];
-            EXPECT_EQ(std::tie(x.x0, x.y0, x.x1, x.y1, x.z, x.points, x.gain, x.score),
-                      std::tie(y.x0, y.y0, y.x1, y.y1, y.z, y.points, y.gain, y.score)) << "bridge " << i;
-        }
-        for (std::size_t i = 0; i < one.columns.size(); ++i) {
-            const auto &x = one.columns[i], &y = more.columns[i];
-            EXPECT_EQ(std::tie(x.x0, x.y0, x.z0, x.x1, x.y1, x.z1, x.radius, x.base, x.top, x.point),
-                      std::tie(y.x0, y.y0, y.z0, y.x1, y.y1, y.z1, y.radius, y.base, y.top, y.point)) << "column " << i;
-        }
-        EXPECT_EQ(one.dropped_points, more.dropped_points);
-    }
+    for (int threads : {2, 3}) test::expect_same(one, plan_in_groups(pts, s, threads));
     // The groups planned apart build what the whole plate's plan builds.
     EXPECT_EQ(geometry(one), geometry(plan::plan_scaffold(pts, free_space(), s, 1)));
 }
