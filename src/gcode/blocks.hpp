@@ -15,7 +15,7 @@ struct BlockMarker {
 };
 
 // Klipper EXCLUDE_OBJECT_START/END, M486 S<n>/S-1, Orca/Bambu "; start/stop
-// printing object"; Bambu's M620/M621 and PrusaSlicer's "; CP TOOLCHANGE
+// printing object" with Bambu's M624/M625; Bambu's M620/M621 and PrusaSlicer's "; CP TOOLCHANGE
 // START/END" around a tool change.
 BlockMarker block_marker(std::string_view line);
 

@@ -146,11 +146,16 @@ struct Parser {
             p.layer_hints.push_back({i, parse_double(c.substr(21), -1), th == std::string_view::npos ? -1 : parse_double(c.substr(th + 12), -1)});
             return;
         }
-        if ((starts_with(c, "Z:") || starts_with(c, "Z_HEIGHT:")) && !p.layer_hints.empty())
-            p.layer_hints.back().z = parse_double(c.substr(c.find(':') + 1), -1);
-        else if ((starts_with(c, "HEIGHT:") || starts_with(c, "LAYER_HEIGHT:")) && !p.layer_hints.empty())
-            p.layer_hints.back().height = parse_double(c.substr(c.find(':') + 1), -1);
-        else if (starts_with(c, "FLAVOR:")) {
+        // The first ;Z: and ;HEIGHT: after a layer comment are the layer's:
+        // PrusaSlicer says ;HEIGHT:0.4 again for an overhang perimeter's
+        // beads, and a post-processor may say its own beads' height.
+        if (starts_with(c, "Z:") || starts_with(c, "Z_HEIGHT:")) {
+            if (!p.layer_hints.empty() && p.layer_hints.back().z < 0)
+                p.layer_hints.back().z = parse_double(c.substr(c.find(':') + 1), -1);
+        } else if (starts_with(c, "HEIGHT:") || starts_with(c, "LAYER_HEIGHT:")) {
+            if (!p.layer_hints.empty() && p.layer_hints.back().height < 0)
+                p.layer_hints.back().height = parse_double(c.substr(c.find(':') + 1), -1);
+        } else if (starts_with(c, "FLAVOR:")) {
             if (p.dialect == Dialect::Unknown) p.dialect = Dialect::Cura;
             p.config["machine_gcode_flavor"] = std::string(trim(c.substr(7)));
         } else if (starts_with(c, "Layer height:")) {

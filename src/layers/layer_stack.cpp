@@ -20,15 +20,19 @@ namespace {
 
 bool extrudes(const gcode::Move& m) { return m.kind == gcode::MoveKind::Extrude; }
 
-// Per layer, the last layer comment after the layer before's last
-// extrusion and at or before its own; null where it has none.
+// Per layer, the last layer comment after the layer before's first
+// extrusion and at or before its own first; null where it has none. Not
+// its last: beads may follow the next layer's comment at this layer's
+// height (a post-processor's after an object's label block that the slicer
+// closes past the layer change, as Bambu Studio does).
 std::vector<const gcode::LayerHint*> hints_of(const gcode::Program& program, const LayerStack& stack) {
     std::vector<const gcode::LayerHint*> out;
     out.reserve(stack.layers.size());
     std::size_t hint = 0;
     for (const Layer& L : stack.layers) {
         const gcode::LayerHint* h = nullptr;
-        while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= L.last_extrusion_line)
+        const std::uint32_t first = program.moves[L.segments.front().move].line;
+        while (hint < program.layer_hints.size() && program.layer_hints[hint].line <= first)
             h = &program.layer_hints[hint++];
         out.push_back(h);
     }

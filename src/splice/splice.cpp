@@ -1,11 +1,14 @@
 #include "splice/splice.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <cstdlib>
 #include <numbers>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -13,6 +16,7 @@
 #include "gcode/format.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
+#include "gcode/role.hpp"
 
 namespace scaffold::splice {
 
@@ -36,13 +40,63 @@ void num(std::string& out, char axis, double v, int decimals) {
     out.append(buf, n);
 }
 
-const char* support_type(gcode::Dialect d) {
-    switch (d) {
-        case gcode::Dialect::Cura: return "SUPPORT";
-        case gcode::Dialect::OrcaSlicer: return "Support";
-        default: return "Support material";
+// How the file names the role of the beads that follow, so that viewers
+// and the printer's host read the support as support and the slicer's beads
+// after it as what they are: ";TYPE:Perimeter" (PrusaSlicer, Cura,
+// OrcaSlicer 1), "; TYPE:FILL" (MatterControl), "; FEATURE: Outer wall"
+// (Bambu Studio, OrcaSlicer 2), "; feature outer perimeter" (Simplify3D 4.1+,
+// Kiri:Moto), "; 'Loop Path', ..." (KISSlicer). Each reads only its own.
+class RoleWords {
+public:
+    explicit RoleWords(gcode::Dialect d) : dialect_(d) {}
+
+    // Takes note of a comment line that names a role.
+    void see(std::string_view line) {
+        line = line.substr(0, line.find_last_not_of(" \t\r") + 1);
+        const std::size_t start = line.find_first_not_of(" \t");
+        if (start == std::string_view::npos) return;
+        const std::string_view t = line.substr(start);
+        std::string_view name;
+        if (t.starts_with(";TYPE:") || t.starts_with("; TYPE:") || t.starts_with("; FEATURE:") ||
+            t.starts_with(";FEATURE:")) {
+            name = t.substr(t.find(':') + 1);
+            name.remove_prefix(std::min(name.size(), name.find_first_not_of(' ')));
+        } else if (t.starts_with("; feature ")) {
+            name = t.substr(10);
+        } else if (gcode::Role r; t.starts_with("; '") && gcode::kisslicer_role(t.substr(2), r)) {
+            name = "Path";
+        } else {
+            return;
+        }
+        last_.assign(line);
+        prefix_ = t.starts_with("; '") ? std::string_view("; '") : t.substr(0, t.size() - name.size());
+        upper_ = upper_ || (!name.empty() && std::none_of(name.begin(), name.end(), [](char c) { return std::islower(static_cast<unsigned char>(c)); }));
+        walls_ = walls_ || name == "Outer wall" || name == "Inner wall" || name == "Sparse infill";
     }
-}
+
+    // The line that names the support.
+    std::string support() const {
+        if (last_.empty()) return std::string(";TYPE:") + name(dialect_ == gcode::Dialect::Cura, dialect_ == gcode::Dialect::OrcaSlicer);
+        if (prefix_ == "; '") return "; 'Support (may Stack) Path'";
+        if (prefix_.starts_with("; feature")) return std::string(prefix_) + "support";
+        if (prefix_.find("FEATURE") != std::string::npos) return std::string(prefix_) + "Support";
+        return std::string(prefix_) + name(upper_ || dialect_ == gcode::Dialect::Cura, walls_ || dialect_ == gcode::Dialect::OrcaSlicer);
+    }
+
+    // The line that gives the slicer's role back.
+    std::string restore() const { return last_.empty() ? std::string(";TYPE:Unknown") : last_; }
+
+private:
+    // Cura's names are upper case; OrcaSlicer's (and Creality Print's) walls
+    // are walls and its support "Support".
+    static const char* name(bool upper, bool orca) { return upper ? "SUPPORT" : orca ? "Support" : "Support material"; }
+
+    gcode::Dialect dialect_;
+    std::string last_;     // the last line that named a role
+    std::string prefix_;   // its words before the name
+    bool upper_ = false;   // names seen in upper case (Cura, ideaMaker, MatterControl)
+    bool walls_ = false;   // OrcaSlicer's names seen
+};
 
 // The acceleration the slicer planned extrusions with (PrusaSlicer's and
 // its forks' config keys, the first of a "normal,silent" pair), else
@@ -69,12 +123,12 @@ double move_seconds(double d, double v, double accel) {
 class BlockWriter {
 public:
     BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
-                std::string_view restore_type, std::string_view restore_width, gcode::Dialect dialect,
+                const RoleWords& roles, std::string_view restore_width, std::string_view restore_height,
                 const layers::BedMesh* mesh, double accel)
         // Retract the way the slicer did at this point: filament pulled back
         // by E is given back by E, whatever else the file does elsewhere.
         : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
-          restore_type_(restore_type), restore_width_(restore_width), dialect_(dialect), mesh_(mesh), accel_(accel) {
+          roles_(roles), restore_width_(restore_width), restore_height_(restore_height), mesh_(mesh), accel_(accel) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
         e_ = saved.e;
@@ -88,9 +142,11 @@ public:
     std::string write(const std::vector<toolpath::Path>& paths) {
         out_ += "; scaffold: support for the layer at";
         num(out_, 'Z', layer_.z, 3);
-        out_ += "\n;TYPE:";
-        out_ += support_type(dialect_);
         out_ += "\n";
+        out_ += roles_.support();
+        out_ += "\n";
+        const bool say_height = !restore_height_.empty() && std::abs(said_value(restore_height_) - layer_.height) > 5e-4;
+        if (say_height) say(restore_height_, layer_.height);
         for (const toolpath::Path& p : paths) path(p);
         retract();
         travel(saved_.x, saved_.y, saved_.z);
@@ -106,11 +162,14 @@ public:
             out_ += "\n";
         }
         if (fan_changed_) out_ += saved_.fan > 0 ? "M106 S" + std::to_string(saved_.fan) + "\n" : std::string("M107\n");
-        out_ += ";TYPE:";
-        out_ += restore_type_.empty() ? std::string_view("Unknown") : restore_type_;
+        out_ += roles_.restore();
         out_ += "\n";
         if (width_said_) {
             out_ += restore_width_;
+            out_ += "\n";
+        }
+        if (say_height) {
+            out_ += restore_height_;
             out_ += "\n";
         }
         out_ += "; scaffold: end\n";
@@ -299,18 +358,30 @@ private:
         }
     }
 
-    // A file that says its beads' widths (";WIDTH:0.45", Bambu's "; LINE_WIDTH:
-    // 0.42") is read by viewers and by scaffold-check with the last width
-    // said: the support's own is said in the same words, and the slicer's
+    // A file that says its beads' width and height (";WIDTH:0.45" and
+    // ";HEIGHT:0.2", Bambu's "; LINE_WIDTH: 0.42" and "; LAYER_HEIGHT: 0.2")
+    // is read by viewers and by scaffold-check with the last ones said: the
+    // support's own are said in the same words as `like`, and the slicer's
     // given back after the block.
+    void say(std::string_view like, double v) {
+        const std::size_t colon = like.find(':');
+        out_ += like.substr(0, colon + 1);
+        if (colon + 1 < like.size() && like[colon + 1] == ' ') out_ += ' ';
+        out_ += gcode::fixed(v, 3);
+        out_ += "\n";
+    }
+
+    static double said_value(std::string_view line) {
+        std::string_view v = line.substr(line.find(':') + 1);
+        v.remove_prefix(std::min(v.size(), v.find_first_not_of(' ')));
+        double d = 0;
+        std::from_chars(v.data(), v.data() + v.size(), d);
+        return d;
+    }
+
     void say_width(double w) {
         if (restore_width_.empty() || (width_said_ && std::abs(w - said_width_) < 1e-9)) return;
-        const std::size_t colon = restore_width_.find(':');
-        const bool space = colon + 1 < restore_width_.size() && restore_width_[colon + 1] == ' ';
-        out_ += restore_width_.substr(0, colon + 1);
-        if (space) out_ += ' ';
-        out_ += gcode::fixed(w, 3);
-        out_ += "\n";
+        say(restore_width_, w);
         width_said_ = true;
         said_width_ = w;
     }
@@ -323,11 +394,11 @@ private:
     const Settings& s_;
     const layers::Layer& layer_;
     bool fw_;
-    std::string_view restore_type_;
-    std::string_view restore_width_;  // the slicer's last width comment line, or empty
+    const RoleWords& roles_;
+    std::string_view restore_width_;   // the slicer's last width comment line, or empty
+    std::string_view restore_height_;  // the slicer's last height comment line, or empty
     bool width_said_ = false;
     double said_width_ = 0;
-    gcode::Dialect dialect_;
     const layers::BedMesh* mesh_;  // null without levelling in the file
     double accel_;                  // mm/s^2, for the time estimate
     double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
@@ -339,14 +410,25 @@ private:
     std::string out_;
 };
 
-// ";WIDTH:0.45" (PrusaSlicer, SuperSlicer), "; LINE_WIDTH: 0.42" (Bambu
-// Studio, OrcaSlicer): the width the readers give the beads that follow.
-bool is_width_comment(std::string_view t) {
+// A comment's text after "; ", or empty for a line that is no comment.
+std::string_view comment_text(std::string_view t) {
     const std::size_t semi = t.find_first_not_of(" \t");
-    if (semi == std::string_view::npos || t[semi] != ';') return false;
+    if (semi == std::string_view::npos || t[semi] != ';') return {};
     t.remove_prefix(semi + 1);
     t.remove_prefix(std::min(t.size(), t.find_first_not_of(' ')));
+    return t;
+}
+
+// ";WIDTH:0.45" and ";HEIGHT:0.2" (PrusaSlicer, SuperSlicer), "; LINE_WIDTH:
+// 0.42" and "; LAYER_HEIGHT: 0.2" (Bambu Studio, OrcaSlicer): the width and
+// height the readers give the beads that follow.
+bool is_width_comment(std::string_view t) {
+    t = comment_text(t);
     return t.starts_with("WIDTH:") || t.starts_with("LINE_WIDTH:");
+}
+bool is_height_comment(std::string_view t) {
+    t = comment_text(t);
+    return t.starts_with("HEIGHT:") || t.starts_with("LAYER_HEIGHT:");
 }
 
 // Support is never spliced into an object's labelled block (cancelling
@@ -358,12 +440,38 @@ int block_marker(std::string_view t) {
     return m.kind == gcode::BlockKind::None ? 0 : (m.opens ? 1 : -1);
 }
 
-// Where to insert a block meant for line `at`: before the labelled block
-// open there. `open` is the line that opened the block open at `from` (the
-// lines before `from` are behind us), or -1; it is carried to the returned
-// line. A block that opened before `from` spans the layer change: the
-// slicers seen never write one, and moving support past it would print it
-// after the next layer, so it is split there (counted in `spanned`).
+// The line after the labelled block open at `at` closes, if nothing is
+// extruded before it does (Bambu Studio closes the layer's last object
+// after the next layer's comment and the object's wipe); 0 if not.
+std::uint32_t closes_before_extruding(const gcode::Program& p, std::uint32_t at) {
+    auto next = std::lower_bound(p.moves.begin(), p.moves.end(), at,
+                                 [](const gcode::Move& m, std::uint32_t l) { return m.line < l; });
+    while (next != p.moves.end() && next->kind != gcode::MoveKind::Extrude) ++next;
+    const std::uint32_t limit = next == p.moves.end() ? static_cast<std::uint32_t>(p.lines.size()) : next->line;
+    for (std::uint32_t l = at; l < limit; ++l) {
+        const int m = block_marker(p.line_text(l));
+        if (m > 0) return 0;
+        if (m < 0) {
+            // "; stop printing object" and then M625: after both.
+            std::uint32_t end = l + 1;
+            for (std::uint32_t k = end; k < limit; ++k) {
+                const std::string_view t = p.line_text(k);
+                if (block_marker(t) < 0) end = k + 1;
+                else if (t.find_first_not_of(" \t\r") != std::string_view::npos) break;
+            }
+            return end;
+        }
+    }
+    return 0;
+}
+
+// Where to insert a block meant for line `at`: after the labelled block
+// open there if it closes before anything more is extruded, else before it.
+// `open` is the line that opened the block open at `from` (the lines before
+// `from` are behind us), or -1; it is carried to the returned line. A block
+// that opened before `from` spans the layer change: the slicers seen never
+// write one, and moving support past it would print it after the next
+// layer, so it is split there (counted in `spanned`).
 std::uint32_t outside_blocks(const gcode::Program& p, std::uint32_t from, std::uint32_t at, std::int64_t& open,
                              std::size_t& spanned) {
     for (std::uint32_t l = from; l < at && l < p.lines.size(); ++l) {
@@ -373,9 +481,10 @@ std::uint32_t outside_blocks(const gcode::Program& p, std::uint32_t from, std::u
     }
     if (open < 0) return at;
     if (open >= static_cast<std::int64_t>(from)) {
-        std::uint32_t before = static_cast<std::uint32_t>(open);
+        const std::uint32_t after = closes_before_extruding(p, at);
+        const std::uint32_t before = static_cast<std::uint32_t>(open);
         open = -1;
-        return before;
+        return after ? after : before;
     }
     ++spanned;
     return at;
@@ -391,7 +500,8 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     st.absolute_e = !program.relative_e_at_start;
     gcode::Command cmd;
     std::vector<gcode::Move> scratch;
-    std::string last_type, last_width;
+    RoleWords roles(program.dialect);
+    std::string last_width, last_height;
     std::uint32_t line = 0;
     std::uint64_t released = 0;  // text before this was lexed and released
     bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
@@ -404,9 +514,9 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
             std::string_view text = program.line_text(line);
             gcode::lex(text, cmd);
             if (cmd.letter == 0) {
-                std::size_t semi = text.find(";TYPE:");
-                if (semi != std::string_view::npos) last_type = std::string(text.substr(semi + 6));
-                else if (is_width_comment(text)) last_width = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
+                roles.see(text);
+                if (is_width_comment(text)) last_width = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
+                else if (is_height_comment(text)) last_height = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
                 continue;
             }
             scratch.clear();
@@ -416,7 +526,8 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
         program.text.release(released, upto);
         released = upto;
-        BlockWriter w(st, settings, layer, fw, last_type, last_width, program.dialect, stack.mesh.empty() ? nullptr : &stack.mesh, accel);
+        BlockWriter w(st, settings, layer, fw, roles, last_width, last_height, stack.mesh.empty() ? nullptr : &stack.mesh,
+                      accel);
         gcode::Edit e;
         e.line = at;
         e.text = w.write(lp.paths);

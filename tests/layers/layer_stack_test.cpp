@@ -88,3 +88,31 @@ TEST(LayerStack, PurgeLineBeforeTheFirstLayerRestsOnTheBed) {
 TEST(LayerStack, NoExtrusionIsAnError) {
     EXPECT_THROW(stack_of("G28\nG1 X10 Y10\n"), Error);
 }
+
+// PrusaSlicer says ;HEIGHT:0.4 again for an overhang perimeter's beads (its
+// bridge flow is round); the layer's height is the first one after its
+// ;LAYER_CHANGE. Read as the last, the layer at z 0.4 was 0.4 thick and
+// took for resting on the bed.
+TEST(LayerStack, TheLayersHeightIsTheFirstOneItsCommentGives) {
+    auto s = stack_of("G90\nM83\n;LAYER_CHANGE\n;Z:0.2\n;HEIGHT:0.2\nG1 Z0.2\nG1 X0 Y0\nG1 X10 Y0 E0.5\n"
+                      ";LAYER_CHANGE\n;Z:0.4\n;HEIGHT:0.2\nG1 Z0.4\nG1 X0 Y0\nG1 X10 Y0 E0.5\n"
+                      ";TYPE:Overhang perimeter\n;HEIGHT:0.4\nG1 X10 Y5 E0.5\n");
+    ASSERT_EQ(s.layers.size(), 2u);
+    EXPECT_NEAR(s.layers[1].nominal_height, 0.2, 1e-9);
+    EXPECT_FALSE(s.layers[1].on_bed);
+}
+
+// Beads at a layer's height after the next layer's comment (a support block
+// after Bambu Studio's label block, which closes past ; CHANGE_LAYER) stay
+// in their layer, and each layer keeps its own comment's height.
+TEST(LayerStack, BeadsAfterTheNextLayersCommentKeepTheirLayersHeight) {
+    auto s = stack_of("G90\nM83\n; CHANGE_LAYER\n; Z_HEIGHT: 0.2\n; LAYER_HEIGHT: 0.2\nG1 Z0.2\nG1 X0 Y0\n"
+                      "G1 X10 Y0 E0.5\n; CHANGE_LAYER\n; Z_HEIGHT: 0.48\n; LAYER_HEIGHT: 0.28\n"
+                      "; LAYER_HEIGHT: 0.2\nG1 X20 Y0\nG1 X30 Y0 E0.5\n; LAYER_HEIGHT: 0.28\n"
+                      "G1 Z0.48\nG1 X0 Y0\nG1 X10 Y0 E0.7\n");
+    ASSERT_EQ(s.layers.size(), 2u);
+    EXPECT_EQ(s.layers[0].segments.size(), 2u);
+    EXPECT_NEAR(s.layers[0].nominal_height, 0.2, 1e-9);
+    EXPECT_NEAR(s.layers[1].nominal_height, 0.28, 1e-9);
+    EXPECT_NEAR(s.layers[1].height, 0.28, 1e-6);
+}

@@ -269,3 +269,131 @@ TEST(Splice, SaysTheSupportsWidthAndGivesTheSlicersBack) {
     ASSERT_FALSE(res.edits.empty());
     EXPECT_EQ(res.edits[0].text.find("WIDTH"), std::string::npos);
 }
+
+// Bambu Studio closes the layer's last object after the next layer's
+// comment and the object's wipe: the support goes after that close (and
+// after M625, where the firmware stops skipping a cancelled object), so
+// the object's moves of the layer come before it and none of its travels
+// cross the fresh support. With a bead between, it goes before the block.
+TEST(Splice, AfterALabelBlockThatClosesPastTheLayerChange) {
+    const std::string open = "; start printing object, unique label id: 1", close = "; stop printing object, unique label id: 1";
+    for (const bool bead_between : {false, true}) {
+        SCOPED_TRACE(bead_between ? "a bead before the close" : "only a wipe before the close");
+        scaffold::testing::SynthGcode g;
+        g.layer(0.2);
+        g.raw(open);
+        g.raw("M624 AQAAAAAAAAA=");
+        g.filled_rect(100, 100, 110, 110);
+        for (int l = 2; l <= 6; ++l) {
+            char z[96];
+            std::snprintf(z, sizeof z, ";LAYER_CHANGE\n;Z:%.1f\n;HEIGHT:0.2", 0.2 * l);
+            g.raw(z);
+            g.travel(100, 104);  // the wipe: no bead
+            std::snprintf(z, sizeof z, "G1 Z%.1f", 0.2 * l);
+            if (bead_between) {  // the next layer's first bead inside the block
+                g.raw(z);
+                g.extrude(100, 106);
+            }
+            g.raw(close);
+            g.raw("M625");
+            if (!bead_between) g.raw(z);
+            g.raw(open);
+            g.raw("M624 AQAAAAAAAAA=");
+            g.filled_rect(100, 100, 110, 110);
+        }
+        g.raw(close);
+        g.raw("M625");
+        gcode::Program in = gcode::parse(g.str(), "in");
+        Settings s = build_settings(in, {}, {});
+        layers::LayerStack stack = layers::build_layers(in, s);
+        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        ASSERT_EQ(res.edits.size(), 5u);
+        EXPECT_EQ(res.blocks_split, 0u);
+        for (const gcode::Edit& e : res.edits) {
+            const std::string_view before = in.line_text(e.line - 1), after = in.line_text(e.line);
+            if (bead_between) EXPECT_EQ(after, open) << "line " << e.line + 1;
+            else EXPECT_EQ(before, "M625") << "line " << e.line + 1;
+        }
+        // Read back, each layer keeps its beads and its own stated height.
+        gcode::Program out = gcode::parse(render(in, res.edits), "out");
+        layers::LayerStack back = layers::build_layers(out, s);
+        ASSERT_EQ(back.layers.size(), stack.layers.size());
+        for (std::size_t i = 0; i < back.layers.size(); ++i) {
+            EXPECT_NEAR(back.layers[i].z, stack.layers[i].z, 1e-6) << i;
+            EXPECT_NEAR(back.layers[i].nominal_height, 0.2, 1e-6) << i;
+        }
+    }
+}
+
+// The support is named in the file's own words, which each viewer and
+// host reads alone, and the slicer's role line is given back after it.
+TEST(Splice, NamesTheSupportInTheFilesWords) {
+    const std::pair<std::string, std::string> cases[] = {
+        {";TYPE:External perimeter", ";TYPE:Support material"},  // PrusaSlicer
+        {";TYPE:WALL-OUTER", ";TYPE:SUPPORT"},                   // Cura, ideaMaker
+        {"; TYPE:WALL-OUTER", "; TYPE:SUPPORT"},                 // MatterControl
+        {";TYPE:Thin wall", ";TYPE:Support material"},          // SuperSlicer
+        {";TYPE:Outer wall", ";TYPE:Support"},                   // OrcaSlicer 1, Creality Print
+        {"; FEATURE: Outer wall", "; FEATURE: Support"},         // Bambu Studio, OrcaSlicer 2
+        {"; feature outer perimeter", "; feature support"},      // Simplify3D 4.1+, Kiri:Moto
+    };
+    for (const auto& [role, support] : cases) {
+        SCOPED_TRACE(role);
+        scaffold::testing::SynthGcode g;
+        for (int l = 1; l <= 6; ++l) {
+            g.layer(0.2 * l);
+            g.raw(role);
+            g.filled_rect(100, 100, 110, 110);
+        }
+        gcode::Program in = gcode::parse(g.str(), "in");
+        Settings s = build_settings(in, {}, {});
+        layers::LayerStack stack = layers::build_layers(in, s);
+        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        ASSERT_EQ(res.edits.size(), 5u);
+        const std::string& t = res.edits[0].text;
+        EXPECT_NE(t.find("\n" + support + "\n"), std::string::npos) << t;
+        EXPECT_NE(t.find("\n" + role + "\n; scaffold: end"), std::string::npos) << t;
+        EXPECT_EQ(t.find("TYPE:Unknown"), std::string::npos) << t;
+        gcode::Program out = gcode::parse(render(in, res.edits), "out");
+        std::vector<gcode::Role> model;
+        for (const auto& m : in.moves)
+            if (m.kind == gcode::MoveKind::Extrude) model.push_back(m.role);
+        std::size_t support_moves = 0, k = 0;
+        for (const auto& m : out.moves) {
+            if (m.kind != gcode::MoveKind::Extrude) continue;
+            if (m.role == gcode::Role::Support) ++support_moves;
+            else if (k < model.size()) EXPECT_EQ(m.role, model[k++]) << "line " << m.line + 1;
+        }
+        EXPECT_GT(support_moves, 0u);
+        EXPECT_EQ(k, model.size());
+    }
+}
+
+// PrusaSlicer says ;HEIGHT:0.4 for an overhang perimeter's round beads;
+// support after one says its own height and gives the slicer's back. Where
+// the last height said is the layer's, nothing is added.
+TEST(Splice, SaysTheSupportsHeightWhereTheLastSaidIsAnother) {
+    scaffold::testing::SynthGcode g;
+    for (int l = 1; l <= 6; ++l) {
+        g.layer(0.2 * l);
+        g.filled_rect(100, 100, 110, 110);
+        if (l % 2 == 0) {
+            g.raw(";TYPE:Overhang perimeter\n;HEIGHT:0.4");
+            g.extrude(100, 111);
+        }
+    }
+    gcode::Program in = gcode::parse(g.str(), "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+    ASSERT_EQ(res.edits.size(), 5u);
+    for (std::size_t i = 0; i < res.edits.size(); ++i) {
+        const std::string& t = res.edits[i].text;
+        if (i % 2 == 1) {  // the layers at z 0.4 and 0.8 end with an overhang perimeter
+            EXPECT_NE(t.find(";HEIGHT:0.200\n"), std::string::npos) << t;
+            EXPECT_NE(t.find(";HEIGHT:0.4\n; scaffold: end"), std::string::npos) << t;
+        } else {
+            EXPECT_EQ(t.find("HEIGHT"), std::string::npos) << t;
+        }
+    }
+}
