@@ -14,6 +14,8 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <boost/iterator/function_output_iterator.hpp>
 
+#include "plan/workers.hpp"
+
 namespace scaffold::plan {
 
 namespace bg = boost::geometry;
@@ -497,23 +499,17 @@ void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
         // Small chunks taken in turn, so threads slowed by a busy core still end together.
         std::atomic<std::size_t> next{0};
         constexpr std::size_t kChunk = 8;
-        // An error in a model callback reaches the caller as it would on one thread.
-        std::vector<std::exception_ptr> failed(threads);
-        auto run = [&](int t) {
+        // An error in a model callback reaches the caller as it would on
+        // one thread, and stops the others early.
+        run_workers(threads, [&](int t) {
             try {
                 for (std::size_t i; (i = next.fetch_add(kChunk)) < seeds.size();)
                     for (std::size_t j = i; j < std::min(seeds.size(), i + kChunk); ++j) evaluate(seeds[j], *scratch_[t]);
             } catch (...) {
-                failed[t] = std::current_exception();
                 next = seeds.size();
+                throw;
             }
-        };
-        std::vector<std::thread> pool;
-        for (int t = 1; t < threads; ++t) pool.emplace_back(run, t);
-        run(0);
-        for (std::thread& th : pool) th.join();
-        for (const std::exception_ptr& e : failed)
-            if (e) std::rethrow_exception(e);
+        });
     }
     for (int seed : seeds)
         if (seeds_[seed].has) ranked_.insert({-seeds_[seed].best.score, seed});

@@ -13,6 +13,7 @@
 #include "plan/braces.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
+#include "plan/workers.hpp"
 
 namespace scaffold::plan {
 
@@ -175,10 +176,7 @@ void for_each_group(std::size_t groups, int workers, const std::function<std::si
             }
         }
     };
-    std::vector<std::thread> pool;
-    for (int w = 1; w < workers; ++w) pool.emplace_back(run, w);
-    run(0);
-    for (std::thread& t : pool) t.join();
+    run_workers(workers, run);
     for (const std::exception_ptr& e : failed)
         if (e) std::rethrow_exception(e);
 }
