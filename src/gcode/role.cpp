@@ -43,14 +43,16 @@ constexpr std::array<std::pair<std::string_view, Role>, 44> kNames{{
     {"move to first perimeter point", Role::Unknown}, {"skirt", Role::Skirt},
 }};
 
-// Simplify3D 3.x/4.x feature comments. A raft is support (Cura's is typed
-// SUPPORT too); the ooze shield and prime pillar are printed for the nozzle.
-constexpr std::array<std::pair<std::string_view, Role>, 12> kSimplify3D{{
+// Simplify3D 3.x/4.x feature comments, and Kiri:Moto's (its walls are
+// "shells"). A raft is support (Cura's is typed SUPPORT too); the ooze
+// shield and prime pillar are printed for the nozzle.
+constexpr std::array<std::pair<std::string_view, Role>, 16> kSimplify3D{{
     {"outer perimeter", Role::ExternalPerimeter}, {"inner perimeter", Role::Perimeter},
     {"solid layer", Role::SolidInfill}, {"infill", Role::InternalInfill}, {"gap fill", Role::SolidInfill},
     {"bridge", Role::BridgeInfill}, {"skirt", Role::Skirt}, {"support", Role::Support},
     {"dense support", Role::SupportInterface}, {"raft", Role::Support}, {"prime pillar", Role::WipeTower},
-    {"ooze shield", Role::WipeTower},
+    {"ooze shield", Role::WipeTower}, {"shells", Role::Perimeter}, {"solid fill", Role::SolidInfill},
+    {"sparse infill", Role::InternalInfill}, {"brim", Role::Skirt},
 }};
 
 // KISSlicer's path comments ("; 'Support Interface Path', 1.9 [feed mm/s]").
