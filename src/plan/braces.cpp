@@ -18,8 +18,6 @@ constexpr double kEps = 1e-6;
 // Every angle of a tie's triangle at least this: three columns not on one
 // line (METHOD: two of their directions from the node 60 degrees apart).
 constexpr double kMinAngleDeg = 30.0;
-// The margin over --min-stiffness a column keeps with its connectors' give.
-constexpr double kGiveMargin = 1.1;
 
 const Column* piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
     for (int i : chain.pieces) {

@@ -31,6 +31,9 @@ double taper_for(double r, double height, double k_target, double give, double w
 // for what the model of a ring leaves out (the polygon's corners, the tip's
 // taper, a connector's lean); 0 when the rule is off.
 inline constexpr double kStiffnessMargin = 1.25;
+// The margin over --min-stiffness a column keeps with its connectors' give
+// (the give is their worst case).
+inline constexpr double kGiveMargin = 1.1;
 inline double target_stiffness(const Settings& s) { return s.min_stiffness * kStiffnessMargin; }
 
 }  // namespace scaffold::plan
