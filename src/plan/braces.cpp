@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "plan/candidates.hpp"
 #include "plan/pillars.hpp"
@@ -65,11 +66,11 @@ std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
 }
 
 double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc, const layers::LayerStack& stack,
-                        const Settings& s) {
+                        const Settings& s, double from) {
     const double w = s.support_width;
     double compliance = 0;
     for (const layers::Layer& layer : stack.layers) {
-        if (layer.purge || layer.z > top + kEps) continue;
+        if (layer.purge || layer.z > top + kEps || layer.z <= from + kEps) continue;
         const Column* c = piece_at(chain, sc, layer.z);
         if (!c) continue;
         const double r = column_radius_at(*c, layer.z, s);
@@ -175,96 +176,118 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // with a smaller margin (the give is the connectors' worst case).
         const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
         if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
-        std::vector<double> levels;
-        for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) {
+        std::vector<double> ties;
+        auto add_tie = [&](double want) {
             const double b = snap_down(want);
-            if (b > W.base + 1 && !bar_layers(b).empty() && (levels.empty() || b > levels.back() + kEps)) levels.push_back(b);
+            if (b > W.base + 1 && !bar_layers(b).empty() && (ties.empty() || b > ties.back() + kEps)) ties.push_back(b);
+        };
+        for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) add_tie(want);
+        if (ties.empty()) continue;
+        // What stands above the top tie starts afresh there: where that part
+        // alone would fall short, one more tie as high as ties go (a thin
+        // column's 12.8 mm above a tie at 10 mm: 1.82 N/mm).
+        std::vector<std::vector<double>> tries{ties};
+        if (1 / (chain_compliance(W, W.hold, sc, stack, s, ties.back()) + give) < kGiveMargin * s.min_stiffness) {
+            add_tie(W.top - 3.0);
+            if (ties.size() > tries.front().size()) tries.insert(tries.begin(), ties);
         }
-        if (levels.empty()) continue;
-        const double b_top = levels.back(), zc_top = bar_layers(b_top).front().first;
-        const std::optional<At> a = at(W, b_top, zc_top);
-        if (!a) continue;
-        // Partners: columns reaching through the top tie, nearest first.
-        std::vector<std::pair<double, int>> partners;
-        for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
-            if (ci == wi || chains[ci].top < zc_top + kBarThickness + 1.0) continue;
-            if (const auto p = at(chains[ci], b_top, zc_top)) {
-                const double d = std::hypot(p->x - a->x, p->y - a->y);
-                if (d <= kBraceReach) partners.emplace_back(d, ci);
+        // The triangle that ties W at these levels: bars, the partners among
+        // the corners, and the helpers it stands up; no bars if none does.
+        auto tie_up = [&](const std::vector<double>& levels)
+            -> std::tuple<std::vector<Bridge>, std::vector<int>, std::vector<PillarChain>> {
+            const double b_top = levels.back(), zc_top = bar_layers(b_top).front().first;
+            const std::optional<At> a = at(W, b_top, zc_top);
+            if (!a) return {};
+            // Partners: columns reaching through the top tie, nearest first.
+            std::vector<std::pair<double, int>> partners;
+            for (int ci = 0; ci < static_cast<int>(chains.size()); ++ci) {
+                if (ci == wi || chains[ci].top < zc_top + kBarThickness + 1.0) continue;
+                if (const auto p = at(chains[ci], b_top, zc_top)) {
+                    const double d = std::hypot(p->x - a->x, p->y - a->y);
+                    if (d <= kBraceReach) partners.emplace_back(d, ci);
+                }
             }
-        }
-        std::sort(partners.begin(), partners.end());
+            std::sort(partners.begin(), partners.end());
+            std::vector<Bridge> bars;
+            std::vector<int> corners;
+            for (std::size_t i = 0; i < partners.size() && bars.empty(); ++i)
+                for (std::size_t j = i + 1; j < partners.size() && bars.empty(); ++j) {
+                    bars = triangle(W, chains[partners[i].second], chains[partners[j].second], levels);
+                    if (!bars.empty()) corners = {partners[i].second, partners[j].second};
+                }
+            // Too few neighbours: a helper pillar up to the top tie (its top
+            // under the bar) makes the third corner, or two make the second and
+            // third, forming an equilateral triangle with W.
+            std::vector<PillarChain> helpers;
+            auto helper = [&](double x, double y) -> std::optional<PillarChain> {
+                const int above = bar_layers(b_top).front().second;
+                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true, b_top);
+                if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
+                // A helper is optional: only where it keeps a whole cell more
+                // than the gap on every layer (with half, a SuperSlicer benchy's
+                // helper touched the hull by 0.02 mm^2 where it stepped aside).
+                for (const auto& [z, l] : tops) {
+                    if (z > b_top + kEps) break;
+                    for (const Column& c : *chain)
+                        if (z > c.z0 + kEps && z <= c.z1 + kEps) {
+                            double cx, cy;
+                            column_centre_at(c, z, cx, cy);
+                            if (!obs.disc_clear(l, cx, cy, column_radius_at(c, z, s) + s.xy_gap + s.resolution))
+                                return std::nullopt;
+                        }
+                }
+                PillarChain p;
+                p.base = chain->front().z0;
+                p.top = chain->back().z1;
+                p.hold = b_top;
+                for (Column& c : *chain) {
+                    p.pieces.push_back(static_cast<int>(sc.columns.size()));
+                    sc.columns.push_back(c);  // taken out again below if the triangle fails
+                }
+                return p;
+            };
+            auto drop_helpers = [&](std::size_t columns_before) { sc.columns.resize(columns_before); };
+            for (std::size_t i = 0; bars.empty() && i <= partners.size() && i < 4; ++i) {
+                const std::size_t before = sc.columns.size();
+                for (int k = 0; k < 12 && bars.empty(); ++k)
+                    for (double d : {10.0, 12.0}) {
+                        if (!bars.empty()) break;
+                        drop_helpers(before);
+                        helpers.clear();
+                        if (i < partners.size()) {
+                            // Apex of the equilateral triangle on W and the partner, either side.
+                            const PillarChain& P = chains[partners[i].second];
+                            const auto p = at(P, b_top, zc_top);
+                            if (k >= 2 || d != 10.0 || !p) continue;
+                            const double mx = (a->x + p->x) / 2, my = (a->y + p->y) / 2, len = partners[i].first;
+                            const double sign = k == 0 ? 1.0 : -1.0, h = len * std::sqrt(3.0) / 2;
+                            auto hq = helper(mx - sign * (p->y - a->y) / len * h, my + sign * (p->x - a->x) / len * h);
+                            if (!hq) continue;
+                            bars = triangle(W, P, *hq, levels);
+                            if (!bars.empty()) {
+                                helpers.push_back(*hq);
+                                corners = {partners[i].second};
+                            }
+                        } else {
+                            const double t = k * std::numbers::pi / 6;
+                            auto h1 = helper(a->x + d * std::cos(t), a->y + d * std::sin(t));
+                            if (!h1) continue;
+                            auto h2 = helper(a->x + d * std::cos(t + std::numbers::pi / 3), a->y + d * std::sin(t + std::numbers::pi / 3));
+                            if (!h2) continue;
+                            bars = triangle(W, *h1, *h2, levels);
+                            if (!bars.empty()) helpers = {*h1, *h2};
+                        }
+                    }
+                if (bars.empty()) drop_helpers(before);
+            }
+            return {bars, corners, helpers};
+        };
         std::vector<Bridge> bars;
         std::vector<int> corners;
-        for (std::size_t i = 0; i < partners.size() && bars.empty(); ++i)
-            for (std::size_t j = i + 1; j < partners.size() && bars.empty(); ++j) {
-                bars = triangle(W, chains[partners[i].second], chains[partners[j].second], levels);
-                if (!bars.empty()) corners = {partners[i].second, partners[j].second};
-            }
-        // Too few neighbours: a helper pillar up to the top tie (its top
-        // under the bar) makes the third corner, or two make the second and
-        // third, forming an equilateral triangle with W.
         std::vector<PillarChain> helpers;
-        auto helper = [&](double x, double y) -> std::optional<PillarChain> {
-            const int above = bar_layers(b_top).front().second;
-            auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true, b_top);
-            if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
-            // A helper is optional: only where it keeps a whole cell more
-            // than the gap on every layer (with half, a SuperSlicer benchy's
-            // helper touched the hull by 0.02 mm^2 where it stepped aside).
-            for (const auto& [z, l] : tops) {
-                if (z > b_top + kEps) break;
-                for (const Column& c : *chain)
-                    if (z > c.z0 + kEps && z <= c.z1 + kEps) {
-                        double cx, cy;
-                        column_centre_at(c, z, cx, cy);
-                        if (!obs.disc_clear(l, cx, cy, column_radius_at(c, z, s) + s.xy_gap + s.resolution))
-                            return std::nullopt;
-                    }
-            }
-            PillarChain p;
-            p.base = chain->front().z0;
-            p.top = chain->back().z1;
-            p.hold = b_top;
-            for (Column& c : *chain) {
-                p.pieces.push_back(static_cast<int>(sc.columns.size()));
-                sc.columns.push_back(c);  // taken out again below if the triangle fails
-            }
-            return p;
-        };
-        auto drop_helpers = [&](std::size_t columns_before) { sc.columns.resize(columns_before); };
-        for (std::size_t i = 0; bars.empty() && i <= partners.size() && i < 4; ++i) {
-            const std::size_t before = sc.columns.size();
-            for (int k = 0; k < 12 && bars.empty(); ++k)
-                for (double d : {10.0, 12.0}) {
-                    if (!bars.empty()) break;
-                    drop_helpers(before);
-                    helpers.clear();
-                    if (i < partners.size()) {
-                        // Apex of the equilateral triangle on W and the partner, either side.
-                        const PillarChain& P = chains[partners[i].second];
-                        const auto p = at(P, b_top, zc_top);
-                        if (k >= 2 || d != 10.0 || !p) continue;
-                        const double mx = (a->x + p->x) / 2, my = (a->y + p->y) / 2, len = partners[i].first;
-                        const double sign = k == 0 ? 1.0 : -1.0, h = len * std::sqrt(3.0) / 2;
-                        auto hq = helper(mx - sign * (p->y - a->y) / len * h, my + sign * (p->x - a->x) / len * h);
-                        if (!hq) continue;
-                        bars = triangle(W, P, *hq, levels);
-                        if (!bars.empty()) {
-                            helpers.push_back(*hq);
-                            corners = {partners[i].second};
-                        }
-                    } else {
-                        const double t = k * std::numbers::pi / 6;
-                        auto h1 = helper(a->x + d * std::cos(t), a->y + d * std::sin(t));
-                        if (!h1) continue;
-                        auto h2 = helper(a->x + d * std::cos(t + std::numbers::pi / 3), a->y + d * std::sin(t + std::numbers::pi / 3));
-                        if (!h2) continue;
-                        bars = triangle(W, *h1, *h2, levels);
-                        if (!bars.empty()) helpers = {*h1, *h2};
-                    }
-                }
-            if (bars.empty()) drop_helpers(before);
+        for (const std::vector<double>& levels : tries) {
+            std::tie(bars, corners, helpers) = tie_up(levels);
+            if (!bars.empty()) break;
         }
         if (bars.empty()) continue;
         braced[wi] = 1;

@@ -30,9 +30,10 @@ struct PillarChain {
 std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
 
 // A pillar's compliance (mm/N) at height `top` over it, summed layer by
-// layer over the loops it prints (their radius as the toolpaths draw them).
+// layer over the loops it prints (their radius as the toolpaths draw them),
+// above height `from` (where a brace ties it, what stands on it starts afresh).
 double chain_compliance(const PillarChain& chain, double top, const Scaffold& scaffold,
-                        const layers::LayerStack& stack, const Settings& settings);
+                        const layers::LayerStack& stack, const Settings& settings, double from = -1e300);
 
 // Ties each pillar weaker than target_stiffness at the top of what it holds
 // to two neighbours (triangles whose angles are all 30 degrees or more), at

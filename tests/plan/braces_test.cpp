@@ -142,3 +142,30 @@ TEST_F(BraceScene, AColumnThatLeavesItsConnectorsTooLittleIsBraced) {
     light.columns.push_back(c);
     EXPECT_EQ(plan::add_braces(light, st, obs, s, {}), 0);
 }
+
+// What stands above the top tie starts afresh there. A thin 22 mm column
+// (outer radius 0.6 mm: centre line 0.375, I = pi 0.375^3 0.45 = 0.074551
+// mm^4, E I = 260.93) tied every 10 mm only at 10 would leave 12 mm above:
+// (12^3 / 3 - 60 x 0.2^3 / 12) / 260.93 = 575.96 / 260.93 = 2.2073 mm/N,
+// 0.453 N/mm, under 1.1 x 2. So it is tied at 19 mm (its top less 3) too:
+// two levels of three bars, the remaining 3 mm some 29 N/mm.
+TEST_F(BraceScene, AThinColumnIsTiedNearItsTopWhereThePartAboveWouldBend) {
+    plan::Column c = plain(40, 40, 22);
+    c.radius = 0.6;
+    sc.columns.push_back(c);
+    EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(sc)[0], 22, sc, st, s, 10), 2.2073, 1e-4);
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 6);
+    int at10 = 0, at19 = 0;
+    for (const plan::Bridge& b : sc.bridges) {
+        at10 += std::abs(b.z - 10) < 1e-6;
+        at19 += std::abs(b.z - 19) < 1e-6;
+    }
+    EXPECT_EQ(at10, 3);
+    EXPECT_EQ(at19, 3);
+    // A 2 mm column leaves 575.96 / 2303.22 = 0.25007 mm/N above 10 mm
+    // (4.0 N/mm): tied at 10 alone (with the 22 mm from the bed far weaker).
+    plan::Scaffold wide;
+    wide.columns.push_back(plain(40, 40, 22));
+    EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(wide)[0], 22, wide, st, s, 10), 0.25007, 1e-5);
+    EXPECT_EQ(plan::add_braces(wide, st, obs, s, {}), 3);
+}
