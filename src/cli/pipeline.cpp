@@ -42,10 +42,6 @@ namespace {
 constexpr int kCoverRounds = 3;
 // Plans made again without the bars the one before could not hold as built.
 constexpr int kBarRounds = 6;
-// Groups planned this long before a second thread joins: it builds its own
-// Obstacles first, more than a light plate's planning costs (16 anchors,
-// joining at once: 3 s of CPU more, 8.7 s against 5.3 s on one thread).
-constexpr double kSecondThreadAfter = 2.0;
 
 using Clock = std::chrono::steady_clock;
 
@@ -390,8 +386,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
         log.debug("{} support points in {} independent groups, planned on {} threads", detected.points.size(),
                   groups.size(), workers);
         progress.say("planning {} support points in {} groups", detected.points.size(), groups.size());
-        // Obstacles fill their caches as they are asked: one each thread
-        // (the same answers), the first the one already built.
+        // Obstacles fill their caches as they are asked: caches of its own
+        // for each thread (the same answers) over the one set of model
+        // rasters, the first thread's the one already built.
         std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
         std::vector<plan::GroupPlan> plans(groups.size());
         plan::for_each_group(
@@ -400,7 +397,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
                 const plan::Obstacles* obs = obstacles.get();
                 if (worker > 0) {
                     auto& mine = own[static_cast<std::size_t>(worker)];
-                    if (!mine) mine = std::make_unique<const plan::Obstacles>(stack, settings);
+                    if (!mine) mine = obstacles->another();
                     obs = mine.get();
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
@@ -408,7 +405,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
                                                *cavities, log, nullptr);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
             },
-            kSecondThreadAfter);
+            req.second_thread_after_s);
         own.clear();
         scaffold = plan::merge_plans(detected, groups, plans, points);
         paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());

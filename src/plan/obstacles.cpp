@@ -6,15 +6,15 @@
 
 namespace scaffold::plan {
 
-Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
-    : inflate(settings.support_width + settings.xy_gap) {
+namespace {
+
+// The model's footprint per layer, as Obstacles keeps it.
+std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, const Settings& settings) {
     // The grid reaches past the print so pillars beside it can be tested too.
-    layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
-    z_.reserve(stack.layers.size());
+    const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
+    std::vector<layers::BitGrid> out;
+    out.reserve(stack.layers.size());
     for (const layers::Layer& layer : stack.layers) {
-        z_.push_back(layer.z);
-        h_.push_back(layer.height);
-        below_.push_back(layer.below);
         // The part's footprint: a hole between sparse infill lines is inside
         // the part, no room for a pillar; a cavity of the model is open to
         // support (layers::draw_hole_seed). A skirt or brim loop encloses
@@ -29,12 +29,41 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
         }
         g |= g.holes_with(seeds);
         if (has_skirt) g |= skirt;
-        model_.push_back(std::move(g));
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
+}  // namespace
+
+Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
+    : inflate(settings.support_width + settings.xy_gap),
+      shared_model_(std::make_shared<const std::vector<layers::BitGrid>>(model_rasters(stack, settings))),
+      model_(*shared_model_) {
+    z_.reserve(stack.layers.size());
+    for (const layers::Layer& layer : stack.layers) {
+        z_.push_back(layer.z);
+        h_.push_back(layer.height);
+        below_.push_back(layer.below);
     }
     grown_.resize(model_.size());
     coarse_.resize(model_.size());
+    const layers::BitGrid& proto = model_.empty() ? layers::BitGrid() : model_.front();
     coarse_h_ = (proto.height() + 7) / 8;
     coarse_wpr_ = (proto.words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
+}
+
+Obstacles::Obstacles(const Obstacles& other, Shared)
+    : inflate(other.inflate), z_(other.z_), h_(other.h_), below_(other.below_), shared_model_(other.shared_model_),
+      model_(*shared_model_) {
+    coarse_h_ = other.coarse_h_;
+    coarse_wpr_ = other.coarse_wpr_;
+    grown_.resize(model_.size());
+    coarse_.resize(model_.size());
+}
+
+std::unique_ptr<const Obstacles> Obstacles::another() const {
+    return std::unique_ptr<const Obstacles>(new Obstacles(*this, Shared{}));
 }
 
 namespace {

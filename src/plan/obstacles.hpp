@@ -93,6 +93,10 @@ private:
 class Obstacles {
 public:
     Obstacles(const layers::LayerStack& stack, const Settings& settings);
+    // Caches of its own over the same model rasters, not copied: for another
+    // thread (the caches fill as they are asked and are no thread's to
+    // share; the rasters, a plate's largest part, never change).
+    std::unique_ptr<const Obstacles> another() const;
 
     int layer_count() const { return static_cast<int>(z_.size()); }
     double layer_z(int layer) const { return z_[layer]; }
@@ -141,9 +145,13 @@ private:
     mutable std::vector<std::vector<std::uint64_t>> coarse_;
     int coarse_h_ = 0, coarse_wpr_ = 0;
 
+    struct Shared {};
+    Obstacles(const Obstacles& other, Shared);
+
     std::vector<double> z_, h_;
     std::vector<int> below_;
-    std::vector<layers::BitGrid> model_;  // per layer, same index as the LayerStack
+    std::shared_ptr<const std::vector<layers::BitGrid>> shared_model_;
+    const std::vector<layers::BitGrid>& model_;  // *shared_model_: per layer, same index as the LayerStack
     mutable std::vector<layers::BitGrid> grown_;  // model_ dilated by `inflate`, lazily
     mutable std::map<double, Fast> fast_;   // by radius
     mutable Fast* last_fast_ = nullptr;     // the last radius asked (map nodes stay put)

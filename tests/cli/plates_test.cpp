@@ -34,6 +34,8 @@ struct Planned {
     std::vector<std::string> log;
 };
 
+// A second thread joins at once (by default after 2 s: never on plates
+// this light), with its own caches over the first's model rasters.
 Planned run(std::string in, int threads) {
     auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(200);
     spdlog::logger log("plates", sink);
@@ -44,6 +46,7 @@ Planned run(std::string in, int threads) {
     req.input_text = &in;
     req.output_text = &r.out;
     req.threads = threads;
+    req.second_thread_after_s = 0;
     cli::run(req, log);
     r.log = sink->last_formatted();
     return r;

@@ -361,8 +361,11 @@ TEST(Splice, NamesTheSupportInTheFilesWords) {
         std::size_t support_moves = 0, k = 0;
         for (const auto& m : out.moves) {
             if (m.kind != gcode::MoveKind::Extrude) continue;
-            if (m.role == gcode::Role::Support) ++support_moves;
-            else if (k < model.size()) EXPECT_EQ(m.role, model[k++]) << "line " << m.line + 1;
+            if (m.role == gcode::Role::Support) {
+                ++support_moves;
+            } else if (k < model.size()) {
+                EXPECT_EQ(m.role, model[k++]) << "line " << m.line + 1;
+            }
         }
         EXPECT_GT(support_moves, 0u);
         EXPECT_EQ(k, model.size());
