@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
         ("preview", po::value<std::string>(), "write an SVG picture of the planned scaffold to FILE")
         ("set", po::value<std::vector<std::string>>()->composing(),
          "override a slicer setting, KEY=VALUE (e.g. --set retract_length=1.5); repeatable")
+        ("threads", po::value<int>(),
+         "threads for planning a plate's independent groups of objects (default: every core; 1 uses the least "
+         "memory, as on a Raspberry Pi; the output is the same for any count)")
         ("verbose,v", "log each stage and its timing")
         ("quiet,q", "log errors only");
     po::options_description detect("Overhang detection");
@@ -134,6 +137,13 @@ int main(int argc, char** argv) {
         req.output_format = vm["output-format"].as<std::string>();
         if (req.output_format != "ascii" && req.output_format != "binary") {
             logger->error("--output-format must be ascii or binary, got '{}' (see --help)", req.output_format);
+            return 2;
+        }
+    }
+    if (vm.count("threads")) {
+        req.threads = vm["threads"].as<int>();
+        if (req.threads < 1) {
+            logger->error("--threads must be at least 1, got {} (see --help)", req.threads);
             return 2;
         }
     }

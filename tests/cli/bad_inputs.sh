@@ -52,6 +52,7 @@ expect missing "cannot open for reading: No such file or directory" "$tmp/nope.g
 body > "$tmp/in.gcode"
 expect bad-option "unrecognised option '--frobnicate'" --frobnicate "$tmp/in.gcode"
 expect bad-value "setting '--xy-gap' from the command line is not a number: 'wide'" --xy-gap wide "$tmp/in.gcode"
+expect bad-threads "--threads must be at least 1, got 0" --threads 0 "$tmp/in.gcode"
 mkdir -p "$tmp/ro"; body > "$tmp/ro/in.gcode"; chmod a-w "$tmp/ro"
 if [ "$(id -u)" -ne 0 ]; then
   expect read-only-dir "cannot create the output file: Permission denied" --method none "$tmp/ro/in.gcode"
