@@ -269,12 +269,32 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
     return out;
 }
 
+namespace {
+
+// Whether bar b runs along f's line: parallel within kForbiddenAngleDeg, its
+// ends within kForbiddenBeside of that line, over at least half the
+// shorter's length.
+bool along(const Bridge& f, const Bridge& b) {
+    const double fl = std::hypot(f.x1 - f.x0, f.y1 - f.y0), bl = std::hypot(b.x1 - b.x0, b.y1 - b.y0);
+    if (fl < 1e-9 || bl < 1e-9) return false;
+    const double ux = (f.x1 - f.x0) / fl, uy = (f.y1 - f.y0) / fl;
+    const double cos = std::abs(ux * (b.x1 - b.x0) + uy * (b.y1 - b.y0)) / bl;
+    if (cos < std::cos(kForbiddenAngleDeg * std::numbers::pi / 180)) return false;
+    auto beside = [&](double x, double y) { return std::abs(-uy * (x - f.x0) + ux * (y - f.y0)); };
+    if (beside(b.x0, b.y0) > kForbiddenBeside || beside(b.x1, b.y1) > kForbiddenBeside) return false;
+    const double t0 = ux * (b.x0 - f.x0) + uy * (b.y0 - f.y0), t1 = ux * (b.x1 - f.x0) + uy * (b.y1 - f.y0);
+    const double overlap = std::min(fl, std::max(t0, t1)) - std::max(0.0, std::min(t0, t1));
+    return overlap >= 0.5 * std::min(fl, bl);
+}
+
+}  // namespace
+
 bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, double layer_height) {
     auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
     for (const Bridge& f : forbidden)
         if (std::abs(f.z - b.z) < 1.5 * layer_height &&
             ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
-             (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0))))
+             (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0)) || along(f, b)))
             return true;
     return false;
 }

@@ -433,3 +433,28 @@ TEST(PlannerSearch, APointNoConnectorReachesIsNoLongerCountedOnThatLine) {
     }
     EXPECT_GT(offered, 0);  // the lower bars were still offered
 }
+
+// A bar that failed as built is not taken again, nor one next to it (ends
+// within 1 mm), nor one along its line (ends within 0.5 mm of it, within
+// 5 degrees, over half the shorter's length): the bull's belly bar came
+// back six rounds running as (114.05, 108.65) -> (131.55, 108.65), then
+// (115.35 ..), (.. 130.35), (109.65 ..), its ends 1.2 to 4.4 mm apart.
+TEST(PlannerForbidden, NeitherTheSameBarNorOneAlongItsLine) {
+    auto bar = [](double x0, double y0, double x1, double y1, double z) {
+        plan::Bridge b;
+        b.x0 = x0, b.y0 = y0, b.x1 = x1, b.y1 = y1, b.z = z;
+        return b;
+    };
+    const std::vector<plan::Bridge> failed{bar(114.05, 108.65, 131.55, 108.65, 6.6)};
+    EXPECT_TRUE(plan::near_forbidden(failed, bar(114.5, 108.9, 131.2, 108.2, 6.6), 0.2));   // ends within 1 mm
+    EXPECT_TRUE(plan::near_forbidden(failed, bar(131.55, 108.65, 114.05, 108.65, 6.8), 0.2));  // reversed, a layer up
+    for (const plan::Bridge& b : {bar(115.35, 108.65, 131.55, 108.65, 6.6), bar(114.05, 108.65, 130.35, 108.65, 6.6),
+                                  bar(109.65, 108.65, 131.55, 108.65, 6.8), bar(120.0, 108.85, 126.0, 108.75, 6.6)})
+        EXPECT_TRUE(plan::near_forbidden(failed, b, 0.2)) << b.x0 << " -> " << b.x1;
+    // Not along it: 1.2 mm beside, 10 degrees off (2.6 mm over 15), a third
+    // of it (6 of an 18 mm bar overlap), or 0.6 mm higher.
+    EXPECT_FALSE(plan::near_forbidden(failed, bar(114.05, 109.85, 131.55, 109.85, 6.6), 0.2));
+    EXPECT_FALSE(plan::near_forbidden(failed, bar(116.0, 108.65, 131.0, 111.30, 6.6), 0.2));
+    EXPECT_FALSE(plan::near_forbidden(failed, bar(125.55, 108.65, 143.55, 108.65, 6.6), 0.2));
+    EXPECT_FALSE(plan::near_forbidden(failed, bar(115.35, 108.65, 131.55, 108.65, 7.2), 0.2));
+}
