@@ -80,6 +80,21 @@ plan::Scaffold one_pillar(double raft_size) {
     return sc;
 }
 
+// A file's layers with one_pillar(0) beside, spliced.
+struct Spliced {
+    gcode::Program in;
+    Settings s;
+    layers::LayerStack stack;
+    splice::SpliceResult res;
+};
+Spliced splice_one_pillar(const std::string& text) {
+    Spliced r{gcode::parse(text, "in"), {}, {}, {}};
+    r.s = build_settings(r.in, {}, {});
+    r.stack = layers::build_layers(r.in, r.s);
+    r.res = splice::splice(r.in, r.stack, toolpath::make_paths(one_pillar(0), r.stack, r.s), r.s);
+    return r;
+}
+
 void check_round(const std::string& text, const char* what) {
     SCOPED_TRACE(what);
     gcode::Program in = gcode::parse(text, "in");
@@ -243,10 +258,7 @@ TEST(Splice, SaysTheSupportsWidthAndGivesTheSlicersBack) {
             g.raw(say + "0.62");
             g.filled_rect(100, 100, 110, 110);
         }
-        gcode::Program in = gcode::parse(g.str(), "in");
-        Settings s = build_settings(in, {}, {});
-        layers::LayerStack stack = layers::build_layers(in, s);
-        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        auto [in, s, stack, res] = splice_one_pillar(g.str());
         ASSERT_EQ(res.edits.size(), 5u);
         EXPECT_NE(res.edits[0].text.find(say + "0.450\n"), std::string::npos) << res.edits[0].text;
         EXPECT_NE(res.edits[0].text.find(say + "0.62\n; scaffold: end"), std::string::npos) << res.edits[0].text;
@@ -303,10 +315,7 @@ TEST(Splice, AfterALabelBlockThatClosesPastTheLayerChange) {
         }
         g.raw(close);
         g.raw("M625");
-        gcode::Program in = gcode::parse(g.str(), "in");
-        Settings s = build_settings(in, {}, {});
-        layers::LayerStack stack = layers::build_layers(in, s);
-        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        auto [in, s, stack, res] = splice_one_pillar(g.str());
         ASSERT_EQ(res.edits.size(), 5u);
         EXPECT_EQ(res.blocks_split, 0u);
         for (const gcode::Edit& e : res.edits) {
@@ -345,10 +354,7 @@ TEST(Splice, NamesTheSupportInTheFilesWords) {
             g.raw(role);
             g.filled_rect(100, 100, 110, 110);
         }
-        gcode::Program in = gcode::parse(g.str(), "in");
-        Settings s = build_settings(in, {}, {});
-        layers::LayerStack stack = layers::build_layers(in, s);
-        auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+        auto [in, s, stack, res] = splice_one_pillar(g.str());
         ASSERT_EQ(res.edits.size(), 5u);
         const std::string& t = res.edits[0].text;
         EXPECT_NE(t.find("\n" + support + "\n"), std::string::npos) << t;
@@ -385,10 +391,7 @@ TEST(Splice, SaysTheSupportsHeightWhereTheLastSaidIsAnother) {
             g.extrude(100, 111);
         }
     }
-    gcode::Program in = gcode::parse(g.str(), "in");
-    Settings s = build_settings(in, {}, {});
-    layers::LayerStack stack = layers::build_layers(in, s);
-    auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(0), stack, s), s);
+    auto [in, s, stack, res] = splice_one_pillar(g.str());
     ASSERT_EQ(res.edits.size(), 5u);
     for (std::size_t i = 0; i < res.edits.size(); ++i) {
         const std::string& t = res.edits[i].text;
