@@ -114,6 +114,9 @@ double widest_clear(const Obstacles& obs, int layer, double x, double y, double 
 // radius changes by what the centre's step leaves of it, and by at least
 // this share of it per layer.
 constexpr double kCapChange = 0.2;
+// Steps (mm of radius) in which a widened column's bottom loop is narrowed
+// until it rests on the model's top.
+constexpr double kRestNarrowing = 0.1;
 
 // Caps limited to change per layer by what the shift limit leaves beside
 // the centre's step, from the capped layers outwards (only ever lowered:
@@ -248,12 +251,27 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         // On the first layer only a loop held all round: what blocks the way
         // there is mostly a skirt or brim line, which holds only what lies on it.
         smooth_caps(path, proto, stack, top_layer, s);
-        const double r_last = path.empty() ? column_radius_at(proto, layer.z, s) : step_radius(proto, path.back(), s);
+        if (first) return false;
+        double r_last = step_radius(proto, path.back(), s);
         const double rest_reach = stack.layers[top_layer].height * slope * 0.8;
-        if (first ||
-            (layer.on_bed ? !loop_held(obs, l, cx, cy, loop_shape(r_last, s.support_width).centre_radius, rest_reach)
-                          : !loop_rests(obs, l, cx, cy, r_last, s.support_width, rest_reach)))
-            return false;
+        auto rests = [&](double radius) {
+            return layer.on_bed ? loop_held(obs, l, cx, cy, loop_shape(radius, s.support_width).centre_radius, rest_reach)
+                                : loop_rests(obs, l, cx, cy, radius, s.support_width, rest_reach);
+        };
+        // Widened for the Standing rule more than the model's top here
+        // holds (a post's foot): the bottom loop as wide as lies on it all
+        // round (not across a slot: the validator's base wants a share of
+        // the island over the model), the loops above widening again as fast
+        // as each may step out.
+        if (!layer.on_bed && proto.taper > 0 && !rests(r_last))
+            for (double narrow = r_last - kRestNarrowing; narrow >= proto.radius - 1e-9; narrow -= kRestNarrowing)
+                if (loop_held(obs, l, cx, cy, loop_shape(narrow, s.support_width).centre_radius, rest_reach)) {
+                    path.back().cap = path.back().cap > 0 ? std::min(path.back().cap, narrow) : narrow;
+                    smooth_caps(path, proto, stack, top_layer, s);
+                    r_last = step_radius(proto, path.back(), s);
+                    break;
+                }
+        if (!rests(r_last)) return false;
         proto.base = Base::Model;
         proto.z0 = layer.z;
         return true;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "layers/layer_stack.hpp"
@@ -333,4 +334,62 @@ TEST(Obstacles, AnotherSharesTheRastersAndAnswersAlike) {
     }
     EXPECT_GT(blocked, 0);
     EXPECT_GT(clear, 0);
+}
+
+// A column widened for the Standing rule over a post's foot narrower than
+// its bottom loop (the shelf's): its bottom loop is narrowed to what lies on
+// the post all round and the loops above widen again, so it keeps the full
+// taper (for its height above the post); it used to be turned away there and
+// fall back to part of it. A round post of radius 1.2 mm to z 2.0, a 6 mm
+// sheet at z 30 over it, nothing else.
+TEST(Obstacles, AWidenedColumnNarrowsItsFootOnASmallTop) {
+    Settings s;
+    layers::LayerStack st;
+    st.bounds = {97, 97, 103, 103};
+    for (int i = 0; i < 150; ++i) {
+        layers::Layer l;
+        l.z = 0.2 * (i + 1);
+        l.height = 0.2;
+        l.below = i - 1;
+        l.on_bed = i == 0;
+        auto fill = [&](double x0, double y0, double x1, double y1) {
+            outline(l, x0, y0, x1, y1, gcode::Role::ExternalPerimeter);
+            for (double y = y0 + 0.4; y < y1 - 0.2; y += 0.4)
+                l.segments.push_back({float(x0), float(y), float(x1), float(y), 0.45f, gcode::Role::SolidInfill,
+                                      static_cast<std::uint32_t>(l.segments.size())});
+        };
+        if (l.z <= 2.0 + 1e-9)
+            for (double r : {1.0, 0.6, 0.2})  // bead centres: the post's edge at 1.2
+                for (int k = 0; k < 48; ++k) {
+                    const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
+                    l.segments.push_back({float(100 + r * std::cos(a)), float(100 + r * std::sin(a)),
+                                          float(100 + r * std::cos(b)), float(100 + r * std::sin(b)), 0.45f,
+                                          gcode::Role::ExternalPerimeter, static_cast<std::uint32_t>(l.segments.size())});
+                }
+        if (i == 149) fill(97, 97, 103, 103);
+        st.layers.push_back(l);
+    }
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(100, 100, 149, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain && !chain->empty());
+    const plan::Column& foot = chain->front();
+    EXPECT_EQ(foot.base, plan::Base::Model);
+    EXPECT_NEAR(foot.z0, 2.0, 1e-6);
+    const double full_taper = plan::taper_for(foot.radius, foot.hold_z - foot.z0, plan::target_stiffness(s), 0,
+                                              s.support_width, s.modulus);
+    EXPECT_GT(full_taper, 0.01);
+    EXPECT_NEAR(foot.taper, full_taper, 1e-9);
+    // Its bottom loop (at z 2.2) lies on the post, narrower than the taper
+    // would make it: its centre line (0.225 inside its outer radius) within
+    // rule (a)'s reach (0.2 tan 55 = 0.286) of the post's edge at 1.225; the
+    // loops above widen again.
+    auto radius_at = [&](double z) {
+        for (const plan::Column& c : *chain)
+            if (z > c.z0 + 1e-6 && z <= c.z1 + 1e-6) return plan::column_radius_at(c, z, s);
+        return -1.0;
+    };
+    const double bottom = radius_at(2.2);
+    EXPECT_LE(bottom - 0.225, 1.225 + 0.2 * std::tan(55 * std::numbers::pi / 180));
+    EXPECT_LT(bottom, foot.radius + foot.taper * (foot.hold_z - 2.2) - 0.05);
+    EXPECT_GT(radius_at(4.0), bottom + 0.05);
 }
