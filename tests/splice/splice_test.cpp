@@ -345,6 +345,7 @@ TEST(Splice, NamesTheSupportInTheFilesWords) {
         {";TYPE:Outer wall", ";TYPE:Support"},                   // OrcaSlicer 1, Creality Print
         {"; FEATURE: Outer wall", "; FEATURE: Support"},         // Bambu Studio, OrcaSlicer 2
         {"; feature outer perimeter", "; feature support"},      // Simplify3D 4.1+, Kiri:Moto
+        {"; 'Perimeter Path', 20.0 [feed mm/s], 30.0 [head mm/s]", "; 'Support (may Stack) Path'"},  // KISSlicer
     };
     for (const auto& [role, support] : cases) {
         SCOPED_TRACE(role);
