@@ -344,31 +344,20 @@ TEST(Obstacles, AnotherSharesTheRastersAndAnswersAlike) {
 // sheet at z 30 over it, nothing else.
 TEST(Obstacles, AWidenedColumnNarrowsItsFootOnASmallTop) {
     Settings s;
-    layers::LayerStack st;
-    st.bounds = {97, 97, 103, 103};
-    for (int i = 0; i < 150; ++i) {
-        layers::Layer l;
-        l.z = 0.2 * (i + 1);
-        l.height = 0.2;
-        l.below = i - 1;
-        l.on_bed = i == 0;
-        auto fill = [&](double x0, double y0, double x1, double y1) {
-            outline(l, x0, y0, x1, y1, gcode::Role::ExternalPerimeter);
-            for (double y = y0 + 0.4; y < y1 - 0.2; y += 0.4)
-                l.segments.push_back({float(x0), float(y), float(x1), float(y), 0.45f, gcode::Role::SolidInfill,
-                                      static_cast<std::uint32_t>(l.segments.size())});
-        };
-        if (l.z <= 2.0 + 1e-9)
-            for (double r : {1.0, 0.6, 0.2})  // bead centres: the post's edge at 1.2
-                for (int k = 0; k < 48; ++k) {
-                    const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
-                    l.segments.push_back({float(100 + r * std::cos(a)), float(100 + r * std::sin(a)),
-                                          float(100 + r * std::cos(b)), float(100 + r * std::sin(b)), 0.45f,
-                                          gcode::Role::ExternalPerimeter, static_cast<std::uint32_t>(l.segments.size())});
-                }
-        if (i == 149) fill(97, 97, 103, 103);
-        st.layers.push_back(l);
-    }
+    const layers::LayerStack st = test::stack_of(
+        150,
+        [](int i, layers::Layer& l) {
+            if (l.z <= 2.0 + 1e-9)
+                for (double r : {1.0, 0.6, 0.2})  // bead centres: the post's edge at 1.2
+                    for (int k = 0; k < 48; ++k) {
+                        const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
+                        test::bead(l, 100 + r * std::cos(a), 100 + r * std::sin(a), 100 + r * std::cos(b),
+                                   100 + r * std::sin(b), gcode::Role::ExternalPerimeter);
+                    }
+            if (i == 149)
+                for (double y = 97; y <= 103 + 1e-9; y += 0.4) test::bead(l, 97, y, 103, y);
+        },
+        {97, 97, 103, 103});
     const plan::Obstacles obs(st, s);
     const auto chain = plan::drop_pillar(100, 100, 149, plan::Top::Contact, st, obs, s);
     ASSERT_TRUE(chain && !chain->empty());
