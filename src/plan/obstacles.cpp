@@ -48,9 +48,10 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
     }
     grown_.resize(model_.size());
     coarse_.resize(model_.size());
-    const layers::BitGrid& proto = model_.empty() ? layers::BitGrid() : model_.front();
-    coarse_h_ = (proto.height() + 7) / 8;
-    coarse_wpr_ = (proto.words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
+    if (!model_.empty()) {
+        coarse_h_ = (model_.front().height() + 7) / 8;
+        coarse_wpr_ = (model_.front().words_per_row() * 8 + 63) / 64;  // a bit for every byte of a row's words
+    }
 }
 
 Obstacles::Obstacles(const Obstacles& other, Shared)

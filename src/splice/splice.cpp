@@ -50,9 +50,8 @@ class RoleWords {
 public:
     explicit RoleWords(gcode::Dialect d) : dialect_(d) {}
 
-    // Takes note of a comment line that names a role.
+    // Takes note of a line (trailing blanks cut off) if it names a role.
     void see(std::string_view line) {
-        line = line.substr(0, line.find_last_not_of(" \t\r") + 1);
         const std::size_t start = line.find_first_not_of(" \t");
         if (start == std::string_view::npos) return;
         const std::string_view t = line.substr(start);
@@ -514,9 +513,10 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
             std::string_view text = program.line_text(line);
             gcode::lex(text, cmd);
             if (cmd.letter == 0) {
-                roles.see(text);
-                if (is_width_comment(text)) last_width = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
-                else if (is_height_comment(text)) last_height = std::string(text.substr(0, text.find_last_not_of(" \t\r") + 1));
+                const std::string_view said = text.substr(0, text.find_last_not_of(" \t\r") + 1);
+                roles.see(said);
+                if (is_width_comment(said)) last_width = said;
+                else if (is_height_comment(said)) last_height = said;
                 continue;
             }
             scratch.clear();
