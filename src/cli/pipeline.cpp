@@ -18,6 +18,7 @@
 #include "gcode/error.hpp"
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
+#include "layers/copies.hpp"
 #include "layers/layer_stack.hpp"
 #include "overhang/dump.hpp"
 #include "overhang/overhangs.hpp"
@@ -42,6 +43,14 @@ namespace {
 constexpr int kCoverRounds = 3;
 // Plans made again without the bars the one before could not hold as built.
 constexpr int kBarRounds = 6;
+// mm: a copy's support points lie this close to its box at most; the plan of
+// one copy keeps this far inside the window it was planned in (wider than
+// any column's foot).
+constexpr double kCopyReach = 10.0;
+// mm: a support point belongs to the copy whose box it lies this close to
+// (it stands on the copy's beads); copies nearer each other than twice this
+// are planned as a whole plate.
+constexpr double kPointReach = 1.0;
 
 using Clock = std::chrono::steady_clock;
 
@@ -275,6 +284,139 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     return {std::move(points), std::move(scaffold), std::move(paths)};
 }
 
+// A plate of exact copies (layers::Copies): the first copy's plan, made
+// clear of the plate as seen from every copy at once, then moved to each.
+// Nothing of the plan may lean on what is not the same around every copy:
+// nullopt (plan the plate whole) when a column stands on the model outside
+// the first copy, the plan reaches out of the window the plate was seen
+// through, or the copies' points differ in number (a raster's rounding).
+std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const overhang::SupportPoints& detected,
+                                        const overhang::Overhangs& overhangs, const layers::LayerStack& stack,
+                                        const Settings& settings, spdlog::logger& log, Progress& progress) {
+    const std::size_t n = copies.offsets.size();
+    // Each point to the copy whose box holds it.
+    const layers::Bounds first = copies.prototype;
+    auto holds = [&](std::size_t k, double x, double y) {
+        const layers::Offset& o = copies.offsets[k];
+        return x >= first.min_x + o.dx - kPointReach && x <= first.max_x + o.dx + kPointReach &&
+               y >= first.min_y + o.dy - kPointReach && y <= first.max_y + o.dy + kPointReach;
+    };
+    std::vector<std::size_t> count(n, 0);
+    plan::PointGroup mine;
+    for (std::size_t i = 0; i < detected.points.size(); ++i) {
+        const overhang::SupportPoint& p = detected.points[i];
+        std::size_t k = 0;
+        while (k < n && !holds(k, p.x, p.y)) ++k;
+        if (k == n) return std::nullopt;
+        ++count[k];
+        if (k == 0) mine.index.push_back(static_cast<int>(i));
+    }
+    for (std::size_t k = 1; k < n; ++k)
+        if (count[k] != count[0]) log.debug("copy {} has {} support points, the first {}", k + 1, count[k], count[0]);
+    for (std::size_t pos = 0; pos < overhangs.layers.size(); ++pos) {
+        const overhang::OverhangLayer& ol = overhangs.layers[pos];
+        std::vector<layers::Cell> cells;
+        const layers::CellBox box = ol.cells.clipped({ol.cells.col(first.min_x - kPointReach), ol.cells.row(first.min_y - kPointReach),
+                                                      ol.cells.col(first.max_x + kPointReach), ol.cells.row(first.max_y + kPointReach)});
+        for (int j = box.j0; j <= box.j1; ++j)
+            for (int i = box.i0; i <= box.i1; ++i)
+                if (ol.cells.get(i, j) && holds(0, ol.cells.cx(i), ol.cells.cy(j))) cells.push_back({i, j});
+        if (!cells.empty()) mine.cells.emplace_back(static_cast<int>(pos), std::move(cells));
+    }
+    const double margin = plan::group_reach(settings) + kCopyReach;
+    const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, margin);
+    const plan::Obstacles obstacles(seen, settings);
+    SharedCavities cavities(stack);
+    progress.say("planning one of {} copies", n);
+    GroupPlanned one = plan_group(plan::group_points(detected, mine), plan::group_overhangs(overhangs, mine), stack,
+                                  obstacles, settings, cavities, log, &progress);
+    // Everything within the window, short of its edge by more than any column is wide.
+    const layers::Bounds inner{first.min_x - margin + kCopyReach, first.min_y - margin + kCopyReach,
+                               first.max_x + margin - kCopyReach, first.max_y + margin - kCopyReach};
+    auto inside = [&](const layers::Bounds& b, double x, double y) {
+        return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y;
+    };
+    for (const plan::Column& c : one.scaffold.columns) {
+        if (!inside(inner, c.x0, c.y0) || !inside(inner, c.x1, c.y1)) return std::nullopt;
+        if (c.base == plan::Base::Model && !inside(first, c.x0, c.y0)) {
+            log.debug("a column stands on the model at ({:.2f}, {:.2f}), outside the first copy: the plate is planned whole",
+                      c.x0, c.y0);
+            return std::nullopt;
+        }
+    }
+    for (const plan::Bridge& b : one.scaffold.bridges)
+        if (!inside(inner, b.x0, b.y0) || !inside(inner, b.x1, b.y1)) return std::nullopt;
+    log.debug("{} exact copies: one planned ({} support points), its plan moved to the others", n, count[0]);
+    std::vector<plan::PointGroup> groups(n);
+    std::vector<plan::GroupPlan> plans(n);
+    overhang::SupportPoints input;
+    input.overhang_area_mm2 = detected.overhang_area_mm2;
+    const plan::GroupPlan planned{std::move(one.points), std::move(one.scaffold)};
+    for (std::size_t k = 0; k < n; ++k) {
+        plans[k] = plan::moved(planned, copies.offsets[k].dx, copies.offsets[k].dy);
+        for (std::size_t i = 0; i < count[0]; ++i) {
+            groups[k].index.push_back(static_cast<int>(input.points.size()));
+            input.points.push_back(plans[k].points.points[i]);
+        }
+    }
+    GroupPlanned out;
+    out.scaffold = plan::merge_plans(input, groups, plans, out.points);
+    // The paths of all copies made at once: where two copies' columns meet
+    // between them they are printed as one, as a plan's own columns are. A
+    // travel within one copy's window is asked as the first copy's was.
+    const layers::Bounds reach = inner;
+    out.paths = toolpath::make_paths(out.scaffold, stack, settings,
+                                     [&](int layer, const toolpath::Point& a, const toolpath::Point& b, double width) {
+                                         for (const layers::Offset& o : copies.offsets)
+                                             if (inside(reach, a.x - o.dx, a.y - o.dy) && inside(reach, b.x - o.dx, b.y - o.dy))
+                                                 return obstacles.segment_clear(layer, a.x - o.dx, a.y - o.dy, b.x - o.dx,
+                                                                                b.y - o.dy, width);
+                                         return false;
+                                     });
+    return out;
+}
+
+// The plate planned whole: points no bar, brace or column can join in
+// groups of their own, on the request's threads.
+GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
+                        const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress) {
+    const auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
+    const std::vector<plan::PointGroup> groups =
+        detected.points.empty() ? std::vector<plan::PointGroup>{}
+                                : plan::point_groups(detected, overhangs, plan::group_reach(settings));
+    SharedCavities cavities(stack);
+    if (groups.size() <= 1) return plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress);
+    const int workers = plan::worker_count(groups.size(), req.threads);
+    log.debug("{} support points in {} independent groups, planned on {} threads", detected.points.size(),
+              groups.size(), workers);
+    progress.say("planning {} support points in {} groups", detected.points.size(), groups.size());
+    // Obstacles fill their caches as they are asked: caches of its own
+    // for each thread (the same answers) over the one set of model
+    // rasters, the first thread's the one already built.
+    std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
+    std::vector<plan::GroupPlan> plans(groups.size());
+    plan::for_each_group(
+        groups.size(), workers, [&](std::size_t g) { return groups[g].index.size(); },
+        [&](std::size_t g, int worker) {
+            const plan::Obstacles* obs = obstacles.get();
+            if (worker > 0) {
+                auto& mine = own[static_cast<std::size_t>(worker)];
+                if (!mine) mine = obstacles->another();
+                obs = mine.get();
+            }
+            GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
+                                           plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
+                                           cavities, log, nullptr);
+            plans[g] = {std::move(done.points), std::move(done.scaffold)};
+        },
+        req.second_thread_after_s);
+    own.clear();
+    GroupPlanned all;
+    all.scaffold = plan::merge_plans(detected, groups, plans, all.points);
+    all.paths = toolpath::make_paths(all.scaffold, stack, settings, obstacles.get());
+    return all;
+}
+
 }  // namespace
 
 Outcome run(const Request& req, spdlog::logger& log) {
@@ -366,53 +508,20 @@ Outcome run(const Request& req, spdlog::logger& log) {
         log.info("bed levelling is baked into the file (Z follows the bed within each layer): the support follows the "
                  "same mesh, as the model's own moves give it");
 
-    auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
     const overhang::SupportPoints detected = points;
     plan::Scaffold scaffold;
     toolpath::SupportPaths paths;
-    // Points no bar, brace or column can join are planned apart (a plate of
-    // objects): a bar that fails plans its own group again, not the plate.
-    std::vector<plan::PointGroup> groups =
-        detected.points.empty() ? std::vector<plan::PointGroup>{}
-                                : plan::point_groups(detected, overhangs, plan::group_reach(settings));
-    auto cavities = std::make_unique<SharedCavities>(stack);
-    if (groups.size() <= 1) {
-        GroupPlanned one = plan_group(detected, overhangs, stack, *obstacles, settings, *cavities, log, &progress);
-        points = std::move(one.points);
-        scaffold = std::move(one.scaffold);
-        paths = std::move(one.paths);
-    } else {
-        const int workers = plan::worker_count(groups.size(), req.threads);
-        log.debug("{} support points in {} independent groups, planned on {} threads", detected.points.size(),
-                  groups.size(), workers);
-        progress.say("planning {} support points in {} groups", detected.points.size(), groups.size());
-        // Obstacles fill their caches as they are asked: caches of its own
-        // for each thread (the same answers) over the one set of model
-        // rasters, the first thread's the one already built.
-        std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
-        std::vector<plan::GroupPlan> plans(groups.size());
-        plan::for_each_group(
-            groups.size(), workers, [&](std::size_t g) { return groups[g].index.size(); },
-            [&](std::size_t g, int worker) {
-                const plan::Obstacles* obs = obstacles.get();
-                if (worker > 0) {
-                    auto& mine = own[static_cast<std::size_t>(worker)];
-                    if (!mine) mine = obstacles->another();
-                    obs = mine.get();
-                }
-                GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
-                                               plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               *cavities, log, nullptr);
-                plans[g] = {std::move(done.points), std::move(done.scaffold)};
-            },
-            req.second_thread_after_s);
-        own.clear();
-        scaffold = plan::merge_plans(detected, groups, plans, points);
-        paths = toolpath::make_paths(scaffold, stack, settings, obstacles.get());
-    }
+    // A plate of exact copies: one planned, its plan moved to the others.
+    std::optional<GroupPlanned> copied;
+    if (req.plan_copies && !stack.z_varies && own_support_mm == 0 && !detected.points.empty())
+        if (const auto copies = layers::find_copies(stack, 2 * kPointReach + settings.resolution))
+            copied = plan_copies(*copies, detected, overhangs, stack, settings, log, progress);
+    GroupPlanned planned = copied ? std::move(*copied) : plan_plate(req, detected, overhangs, stack, settings, log, progress);
+    copied.reset();
+    points = std::move(planned.points);
+    scaffold = std::move(planned.scaffold);
+    paths = std::move(planned.paths);
     time.lap("plan");
-    obstacles.reset();  // one raster per layer: free before the text is read again
-    cavities.reset();
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())
         gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));

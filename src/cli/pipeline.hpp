@@ -28,6 +28,9 @@ struct Request {
     // thread with Obstacles of its own: 8.7 s of CPU against 5.3 on one).
     int threads = 0;
     double second_thread_after_s = 2.0;
+    // A plate of exact copies (layers::Copies) planned as one copy moved to
+    // each; false plans it whole, as any other plate.
+    bool plan_copies = true;
     // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
     // from here instead of reading `input`, and the output kept here instead
     // of written.

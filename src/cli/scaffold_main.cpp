@@ -67,6 +67,9 @@ int main(int argc, char** argv) {
         ("threads", po::value<int>(),
          "threads for planning a plate's independent groups of objects (default: every core; 1 uses the least "
          "memory, as on a Raspberry Pi; the output is the same for any count)")
+        ("whole-plate",
+         "plan a plate of exact copies (a slicer's instances of one object) as a whole, as any other plate; by "
+         "default one copy is planned, clear of its neighbours as every copy sees them, and its plan moved to the others")
         ("verbose,v", "log each stage and its timing")
         ("quiet,q", "log errors only");
     po::options_description detect("Overhang detection");
@@ -147,6 +150,7 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
+    if (vm.count("whole-plate")) req.plan_copies = false;
     for (const auto& o : detect.options()) {
         const std::string& n = o->long_name();
         if (vm.count(n)) req.overrides["--" + n] = vm[n].as<std::string>();

@@ -213,4 +213,29 @@ Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<Poi
     return out;
 }
 
+GroupPlan moved(const GroupPlan& plan, double dx, double dy) {
+    GroupPlan out = plan;
+    for (overhang::SupportPoint& p : out.points.points) {
+        p.x += dx;
+        p.y += dy;
+    }
+    for (Column& c : out.scaffold.columns) {
+        c.x0 += dx;
+        c.y0 += dy;
+        c.x1 += dx;
+        c.y1 += dy;
+    }
+    for (Bridge& b : out.scaffold.bridges) {
+        b.x0 += dx;
+        b.y0 += dy;
+        b.x1 += dx;
+        b.y1 += dy;
+    }
+    for (Xyz& e : out.scaffold.unheld_bridge_ends) {
+        e.x += dx;
+        e.y += dy;
+    }
+    return out;
+}
+
 }  // namespace scaffold::plan

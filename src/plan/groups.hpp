@@ -63,4 +63,7 @@ struct GroupPlan {
 Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<PointGroup>& groups,
                      std::vector<GroupPlan>& plans, overhang::SupportPoints& points);
 
+// The plan moved by (dx, dy): a copy's plan from the first copy's.
+GroupPlan moved(const GroupPlan& plan, double dx, double dy);
+
 }  // namespace scaffold::plan

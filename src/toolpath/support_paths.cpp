@@ -272,6 +272,14 @@ void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridge
 
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s,
                         const plan::Obstacles* obstacles) {
+    if (!obstacles) return make_paths(scaffold, stack, s, TravelClear{});
+    return make_paths(scaffold, stack, s, [obstacles](int layer, const Point& a, const Point& b, double width) {
+        return obstacles->segment_clear(layer, a.x, a.y, b.x, b.y, width);
+    });
+}
+
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s,
+                        const TravelClear& clear) {
     SupportPaths out;
     const double w = s.support_width;
     // The layer printed next above each layer (-1 for the top).
@@ -374,11 +382,9 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         if (next[l] >= 0) add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s);
         if (lp.paths.empty()) continue;
         order_paths(lp.paths);
-        if (obstacles)
-            for (std::size_t i = 1; i < lp.paths.size(); ++i) {
-                const Point &a = lp.paths[i - 1].points.back(), &b = lp.paths[i].points.front();
-                lp.paths[i].retract = !obstacles->segment_clear(l, a.x, a.y, b.x, b.y, s.support_width);
-            }
+        if (clear)
+            for (std::size_t i = 1; i < lp.paths.size(); ++i)
+                lp.paths[i].retract = !clear(l, lp.paths[i - 1].points.back(), lp.paths[i].points.front(), s.support_width);
         printed_at[l] = static_cast<int>(out.layers.size());
         out.layers.push_back(std::move(lp));
     }

@@ -2,6 +2,7 @@
 // Step 5: the planned scaffold as extrusion paths, per layer: pillar loops
 // (tapered tips, flared feet), raft squares on the first layer, and bridge
 // lines. Plain geometry with width, height and speed; splice/ writes G-code.
+#include <functional>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -44,6 +45,11 @@ inline constexpr double kBridgeThickness = 0.4;
 // where they cross no model.
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
                         const plan::Obstacles* obstacles = nullptr);
+// The same, the travel from a to b on a layer (index) asked of `clear`:
+// true when it keeps `width` clear of the model.
+using TravelClear = std::function<bool(int layer, const Point& a, const Point& b, double width)>;
+SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
+                        const TravelClear& clear);
 
 // The two side-by-side lines of a bar's layer, in printing order, each
 // reaching half a pillar radius past the bar's ends into the pillar tops.

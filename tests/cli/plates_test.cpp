@@ -1,10 +1,13 @@
 // The whole pipeline on a plate of objects far enough apart to be planned
 // as independent groups: the same output for any thread count, and each
-// object the support it gets alone.
+// object the support it gets alone. And a plate of exact copies: one copy
+// planned, its plan moved to the others.
 #include <gtest/gtest.h>
 #include <spdlog/logger.h>
 #include <spdlog/sinks/ringbuffer_sink.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -17,16 +20,38 @@ using namespace scaffold;
 
 namespace {
 
-// Mushrooms (a cap of radius 6 on a stem of radius 2.5) at these x, y 105.
-std::string mushrooms(const std::vector<double>& xs) {
+// Mushrooms (a cap of radius 6 on a stem of radius 2.5) at these x, y 105;
+// the last one's cap `last_cap` wide when given.
+std::string mushrooms(const std::vector<double>& xs, double last_cap = 6.0) {
     scaffold::testing::SynthGcode g;
     for (int l = 1; l <= 20; ++l) {
         const double z = 0.2 * l;
         g.layer(z);
         g.type("External perimeter");
-        for (double x : xs) g.filled_disc(x, 105, z > 3.0 + 1e-9 ? 6.0 : 2.5);
+        for (std::size_t k = 0; k < xs.size(); ++k)
+            g.filled_disc(xs[k], 105, z > 3.0 + 1e-9 ? (k + 1 == xs.size() ? last_cap : 6.0) : 2.5);
     }
     return g.str();
+}
+
+// The support's extrusions (end points, 3 decimals as written) whose x lies
+// in [x0, x1), moved by -x0.
+std::vector<std::pair<long, long>> support_moves(const std::string& out, double x0, double x1) {
+    std::vector<std::pair<long, long>> moves;
+    bool support = false;
+    std::size_t at = 0;
+    while (at < out.size()) {
+        std::size_t end = out.find('\n', at);
+        if (end == std::string::npos) end = out.size();
+        const std::string line = out.substr(at, end - at);
+        at = end + 1;
+        if (line.rfind(";TYPE:", 0) == 0) support = line == ";TYPE:Support material";
+        if (!support || line.rfind("G1 X", 0) != 0 || line.find(" E") == std::string::npos) continue;
+        const double x = std::strtod(line.c_str() + 4, nullptr);
+        const double y = std::strtod(line.c_str() + line.find(" Y") + 2, nullptr);
+        if (x >= x0 && x < x1) moves.emplace_back(std::lround((x - x0) * 1000), std::lround(y * 1000));
+    }
+    return moves;
 }
 
 struct Planned {
@@ -36,7 +61,7 @@ struct Planned {
 
 // A second thread joins at once (by default after 2 s: never on plates
 // this light), with its own caches over the first's model rasters.
-Planned run(std::string in, int threads) {
+Planned run(std::string in, int threads, bool plan_copies = false) {
     auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(200);
     spdlog::logger log("plates", sink);
     log.set_level(spdlog::level::debug);
@@ -47,6 +72,7 @@ Planned run(std::string in, int threads) {
     req.output_text = &r.out;
     req.threads = threads;
     req.second_thread_after_s = 0;
+    req.plan_copies = plan_copies;
     cli::run(req, log);
     r.log = sink->last_formatted();
     return r;
@@ -56,6 +82,15 @@ double support_mm(const std::string& out) {
     const std::string key = "; scaffold: support filament used [mm] = ";
     const auto at = out.find(key);
     return at == std::string::npos ? -1 : std::strtod(out.c_str() + at + key.size(), nullptr);
+}
+
+bool same_moved(std::vector<std::pair<long, long>> a, std::vector<std::pair<long, long>> b) {
+    if (a.size() != b.size()) return false;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::abs(a[i].first - b[i].first) > 1 || std::abs(a[i].second - b[i].second) > 1) return false;
+    return true;
 }
 
 bool said(const Planned& r, const std::string& what) {
@@ -87,4 +122,27 @@ TEST(Plates, ObjectsWithinReachArePlannedAsOne) {
     const Planned r = run(mushrooms({100, 125}), 2);
     EXPECT_FALSE(said(r, "independent groups"));
     EXPECT_GT(support_mm(r.out), 0);
+}
+
+TEST(Plates, ExactCopiesArePlannedOnceAndTheirPlanMoved) {
+    // 30 mm apart: within a bar's reach, one group when planned whole.
+    const Planned r = run(mushrooms({30, 60, 90}), 1, true);
+    EXPECT_TRUE(said(r, "3 exact copies: one planned"));
+    const auto first = support_moves(r.out, 15, 45), second = support_moves(r.out, 45, 75),
+               third = support_moves(r.out, 75, 105);
+    ASSERT_GT(first.size(), 20u);
+    // The same extrusions (in an order of their own: a layer's paths are
+    // ordered over the whole plate), each 30 mm on, within the written
+    // decimals' rounding.
+    EXPECT_TRUE(same_moved(first, second));
+    EXPECT_TRUE(same_moved(first, third));
+    // And each copy as much support as a mushroom alone (its neighbours,
+    // 18 mm off, are in no column's way).
+    const double alone = support_mm(run(mushrooms({60}), 1).out);
+    EXPECT_NEAR(support_mm(r.out), 3 * alone, 0.02 * 3 * alone);
+}
+
+TEST(Plates, APlateWithADifferentObjectOrWholePlateIsPlannedWhole) {
+    EXPECT_FALSE(said(run(mushrooms({30, 60, 90}, 5.5), 1, true), "exact copies"));
+    EXPECT_FALSE(said(run(mushrooms({30, 60, 90}), 1, false), "exact copies"));
 }

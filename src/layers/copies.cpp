@@ -1,0 +1,215 @@
+#include "layers/copies.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <tuple>
+#include <unordered_map>
+
+#include "gcode/role.hpp"
+#include "layers/raster.hpp"
+#include "layers/regions.hpp"
+
+namespace scaffold::layers {
+
+namespace {
+
+constexpr std::size_t kMaxObjects = 4096;  // more separate pieces than any plate: no plate of copies
+
+bool model_bead(const Layer& layer, const Segment& s) { return !layer.purge && s.role != gcode::Role::Skirt; }
+
+void extend(Bounds& b, double x, double y, double r) {
+    b.min_x = std::min(b.min_x, x - r);
+    b.min_y = std::min(b.min_y, y - r);
+    b.max_x = std::max(b.max_x, x + r);
+    b.max_y = std::max(b.max_y, y + r);
+}
+
+Bounds empty_bounds() {
+    const double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf, -inf, -inf};
+}
+
+bool meets(const Bounds& a, const Bounds& b) {
+    return a.min_x <= b.max_x && b.min_x <= a.max_x && a.min_y <= b.max_y && b.min_y <= a.max_y;
+}
+
+Bounds grown(const Bounds& b, double d) { return {b.min_x - d, b.min_y - d, b.max_x + d, b.max_y + d}; }
+
+struct Object {
+    Bounds box = empty_bounds();
+    double ax = std::numeric_limits<double>::infinity(), ay = ax;  // lowest endpoint x and y: where it is
+    std::vector<std::vector<const Segment*>> layers;                 // its beads, per layer
+};
+
+// Whether b's beads are a's, moved (each object's beads by its own
+// anchor), layer by layer: each of b's beads matched to one of a's with
+// the same role and width and ends within kCopyTolerance, either way round
+// (an infill line chained from the other side is the same bead). Looked up
+// by midpoint in cells far wider than the tolerance, the neighbouring cells
+// too, so no rounding can hide a match.
+bool same_beads(const Object& a, const Object& b) {
+    constexpr double kCell = 0.05;
+    // mm²: E's last decimal (1e-5 mm of 1.75 mm filament, 2.4e-5 mm³) over
+    // a 0.05 mm layer, with room to spare.
+    constexpr double kWidthFromE = 1e-3;
+    auto cell = [](double v) { return static_cast<long long>(std::floor(v / kCell)); };
+    auto key = [](long long i, long long j) { return i * 1'000'003LL + j; };
+    std::unordered_map<long long, std::vector<std::size_t>> at;
+    std::vector<char> used;
+    for (std::size_t l = 0; l < a.layers.size(); ++l) {
+        const auto &sa = a.layers[l], &sb = b.layers[l];
+        if (sa.size() != sb.size()) return false;
+        if (sa.empty()) continue;
+        at.clear();
+        used.assign(sa.size(), 0);
+        for (std::size_t i = 0; i < sa.size(); ++i) {
+            const Segment& s = *sa[i];
+            at[key(cell((s.x0 + s.x1) / 2.0 - a.ax), cell((s.y0 + s.y1) / 2.0 - a.ay))].push_back(i);
+        }
+        for (const Segment* t : sb) {
+            const double x0 = t->x0 - b.ax, y0 = t->y0 - b.ay, x1 = t->x1 - b.ax, y1 = t->y1 - b.ay;
+            const long long ci = cell((x0 + x1) / 2), cj = cell((y0 + y1) / 2);
+            // A width worked out from E (no width comment) carries E's
+            // rounding over the bead's length: loose on a short bead.
+            const double width_tolerance = 0.005 + kWidthFromE / std::max(std::hypot(x1 - x0, y1 - y0), 1e-3);
+            auto near = [](double p, double q) { return std::abs(p - q) <= kCopyTolerance; };
+            bool found = false;
+            for (long long di = -1; di <= 1 && !found; ++di)
+                for (long long dj = -1; dj <= 1 && !found; ++dj) {
+                    auto it = at.find(key(ci + di, cj + dj));
+                    if (it == at.end()) continue;
+                    for (std::size_t i : it->second) {
+                        if (used[i]) continue;
+                        const Segment& s = *sa[i];
+                        if (s.role != t->role || std::abs(s.width - t->width) > width_tolerance) continue;
+                        const double u0 = s.x0 - a.ax, v0 = s.y0 - a.ay, u1 = s.x1 - a.ax, v1 = s.y1 - a.ay;
+                        if ((near(u0, x0) && near(v0, y0) && near(u1, x1) && near(v1, y1)) ||
+                            (near(u0, x1) && near(v0, y1) && near(u1, x0) && near(v1, y0))) {
+                            used[i] = 1;
+                            found = true;
+                            break;
+                        }
+                    }
+                }
+            if (!found) return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+std::optional<Copies> find_copies(const LayerStack& stack, double apart) {
+    Bounds all = empty_bounds();
+    for (const Layer& layer : stack.layers)
+        for (const Segment& s : layer.segments) {
+            if (!model_bead(layer, s)) continue;
+            if (gcode::is_support(s.role) || layer.slicer_support) return std::nullopt;
+            extend(all, s.x0, s.y0, s.width);
+            extend(all, s.x1, s.y1, s.width);
+        }
+    if (all.empty()) return std::nullopt;
+    // Objects: the pieces of the model's footprint over all layers, beads
+    // drawn at least kCopyJoin wide on cells of half that.
+    BitGrid grid(all.min_x - kCopyJoin, all.min_y - kCopyJoin, all.max_x + kCopyJoin, all.max_y + kCopyJoin,
+                 kCopyJoin / 2);
+    for (const Layer& layer : stack.layers)
+        for (const Segment& s : layer.segments)
+            if (model_bead(layer, s)) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, std::max<double>(s.width, kCopyJoin));
+    const std::vector<std::vector<Cell>> pieces = components(grid);
+    if (pieces.size() < 2 || pieces.size() > kMaxObjects) return std::nullopt;
+    std::vector<int> label(static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()), -1);
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+        for (const Cell& c : pieces[p])
+            label[static_cast<std::size_t>(c.j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(c.i)] =
+                static_cast<int>(p);
+    std::vector<Object> objects(pieces.size());
+    for (Object& o : objects) o.layers.resize(stack.layers.size());
+    for (std::size_t l = 0; l < stack.layers.size(); ++l)
+        for (const Segment& s : stack.layers[l].segments) {
+            if (!model_bead(stack.layers[l], s)) continue;
+            const int i = grid.col(s.x0), j = grid.row(s.y0);
+            if (i < 0 || j < 0 || i >= grid.width() || j >= grid.height()) return std::nullopt;
+            const int p = label[static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(i)];
+            if (p < 0) return std::nullopt;  // never: the bead's own cell is drawn
+            Object& o = objects[static_cast<std::size_t>(p)];
+            o.layers[l].push_back(&s);
+            extend(o.box, s.x0, s.y0, s.width / 2);
+            extend(o.box, s.x1, s.y1, s.width / 2);
+            o.ax = std::min({o.ax, static_cast<double>(s.x0), static_cast<double>(s.x1)});
+            o.ay = std::min({o.ay, static_cast<double>(s.y0), static_cast<double>(s.y1)});
+        }
+    // The first copy: lowest, then leftmost (to the micron, so no rounding decides).
+    auto place = [](const Object& o) { return std::make_pair(std::lround(o.ay * 1000), std::lround(o.ax * 1000)); };
+    std::vector<std::size_t> order(objects.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return place(objects[a]) < place(objects[b]); });
+    const Object& first = objects[order.front()];
+    for (std::size_t a = 0; a < objects.size(); ++a)
+        for (std::size_t b = a + 1; b < objects.size(); ++b)
+            if (meets(grown(objects[a].box, apart / 2), grown(objects[b].box, apart / 2))) return std::nullopt;
+    Copies out;
+    out.prototype = first.box;
+    for (const auto& segs : first.layers) out.segments += segs.size();
+    for (std::size_t k : order) {
+        const Object& o = objects[k];
+        if (&o != &first && !same_beads(first, o)) return std::nullopt;
+        out.offsets.push_back({o.ax - first.ax, o.ay - first.ay});
+    }
+    return out;
+}
+
+LayerStack seen_from_every_copy(const LayerStack& stack, const Copies& copies, double margin) {
+    const Bounds window = grown(copies.prototype, margin);
+    // Where another copy stands as seen from one: every difference of two
+    // offsets, once each (to the micron).
+    std::vector<Offset> around;
+    for (const Offset& a : copies.offsets)
+        for (const Offset& b : copies.offsets) {
+            const Offset d{a.dx - b.dx, a.dy - b.dy};
+            const Bounds moved{copies.prototype.min_x + d.dx, copies.prototype.min_y + d.dy, copies.prototype.max_x + d.dx,
+                               copies.prototype.max_y + d.dy};
+            if (!meets(moved, window)) continue;
+            const bool known = std::any_of(around.begin(), around.end(), [&](const Offset& e) {
+                return std::lround(e.dx * 1000) == std::lround(d.dx * 1000) && std::lround(e.dy * 1000) == std::lround(d.dy * 1000);
+            });
+            if (!known) around.push_back(d);
+        }
+    auto in = [](const Bounds& b, double x, double y) { return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y; };
+    LayerStack out;
+    out.bounds = window;
+    out.z_varies = stack.z_varies;
+    out.mesh = stack.mesh;
+    out.layers.reserve(stack.layers.size());
+    for (const Layer& layer : stack.layers) {
+        Layer seen = layer;
+        seen.segments.clear();
+        auto add = [&](const Segment& s, double dx, double dy) {
+            Segment m = s;
+            m.x0 = static_cast<float>(s.x0 + dx);
+            m.y0 = static_cast<float>(s.y0 + dy);
+            m.x1 = static_cast<float>(s.x1 + dx);
+            m.y1 = static_cast<float>(s.y1 + dy);
+            const double r = m.width / 2;
+            const Bounds box{std::min(m.x0, m.x1) - r, std::min(m.y0, m.y1) - r, std::max(m.x0, m.x1) + r,
+                             std::max(m.y0, m.y1) + r};
+            if (meets(box, window)) seen.segments.push_back(m);
+        };
+        for (const Segment& s : layer.segments) {
+            if (model_bead(layer, s)) {
+                // The first copy's beads stand for every copy's.
+                if (in(copies.prototype, s.x0, s.y0) && in(copies.prototype, s.x1, s.y1))
+                    for (const Offset& d : around) add(s, d.dx, d.dy);
+            } else {
+                for (const Offset& o : copies.offsets) add(s, -o.dx, -o.dy);
+            }
+        }
+        seen.segments.shrink_to_fit();
+        out.layers.push_back(std::move(seen));
+    }
+    return out;
+}
+
+}  // namespace scaffold::layers
