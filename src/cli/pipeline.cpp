@@ -43,13 +43,14 @@ namespace {
 constexpr int kCoverRounds = 3;
 // Plans made again without the bars the one before could not hold as built.
 constexpr int kBarRounds = 6;
-// mm: a copy's support points lie this close to its box at most; the plan of
-// one copy keeps this far inside the window it was planned in (wider than
-// any column's foot).
+// mm: the first copy of a plate of copies is planned seeing this far around
+// its box, and its plan must keep kCopyReach (more than any column's foot
+// is wide) inside that. Its bars stand within a bar's offset (5 mm) of its
+// points, braces' helper pillars within 12 mm of their columns.
+constexpr double kCopyWindow = 25.0;
 constexpr double kCopyReach = 10.0;
-// mm: a support point belongs to the copy whose box it lies this close to
-// (it stands on the copy's beads); copies nearer each other than twice this
-// are planned as a whole plate.
+// mm: copies nearer each other than twice this are planned as a whole
+// plate (a support point stands on its copy's beads, within its box).
 constexpr double kPointReach = 1.0;
 
 using Clock = std::chrono::steady_clock;
@@ -284,60 +285,38 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     return {std::move(points), std::move(scaffold), std::move(paths)};
 }
 
-// A plate of exact copies (layers::Copies): the first copy's plan, made
-// clear of the plate as seen from every copy at once, then moved to each.
-// Nothing of the plan may lean on what is not the same around every copy:
-// nullopt (plan the plate whole) when a column stands on the model outside
-// the first copy, the plan reaches out of the window the plate was seen
-// through, or the copies' points differ in number (a raster's rounding).
-std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const overhang::SupportPoints& detected,
-                                        const overhang::Overhangs& overhangs, const layers::LayerStack& stack,
-                                        const Settings& settings, spdlog::logger& log, Progress& progress) {
+// A plate of exact copies (layers::Copies): the first copy's plan (its
+// points, overhangs, beads alone in `first_copy`), made clear of the plate
+// as seen from every copy at once, then moved to each. Nothing of the plan
+// may lean on what is not the same around every copy: nullopt (plan the
+// plate whole) when a column stands on the model outside the first copy or
+// the plan reaches the edge of the window the plate was seen through.
+std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const layers::LayerStack& first_copy,
+                                        const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
+                                        const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log,
+                                        Progress& progress) {
     const std::size_t n = copies.offsets.size();
-    // Each point to the copy whose box holds it.
     const layers::Bounds first = copies.prototype;
-    auto holds = [&](std::size_t k, double x, double y) {
-        const layers::Offset& o = copies.offsets[k];
-        return x >= first.min_x + o.dx - kPointReach && x <= first.max_x + o.dx + kPointReach &&
-               y >= first.min_y + o.dy - kPointReach && y <= first.max_y + o.dy + kPointReach;
-    };
-    std::vector<std::size_t> count(n, 0);
-    plan::PointGroup mine;
-    for (std::size_t i = 0; i < detected.points.size(); ++i) {
-        const overhang::SupportPoint& p = detected.points[i];
-        std::size_t k = 0;
-        while (k < n && !holds(k, p.x, p.y)) ++k;
-        if (k == n) return std::nullopt;
-        ++count[k];
-        if (k == 0) mine.index.push_back(static_cast<int>(i));
-    }
-    for (std::size_t k = 1; k < n; ++k)
-        if (count[k] != count[0]) log.debug("copy {} has {} support points, the first {}", k + 1, count[k], count[0]);
-    for (std::size_t pos = 0; pos < overhangs.layers.size(); ++pos) {
-        const overhang::OverhangLayer& ol = overhangs.layers[pos];
-        std::vector<layers::Cell> cells;
-        const layers::CellBox box = ol.cells.clipped({ol.cells.col(first.min_x - kPointReach), ol.cells.row(first.min_y - kPointReach),
-                                                      ol.cells.col(first.max_x + kPointReach), ol.cells.row(first.max_y + kPointReach)});
-        for (int j = box.j0; j <= box.j1; ++j)
-            for (int i = box.i0; i <= box.i1; ++i)
-                if (ol.cells.get(i, j) && holds(0, ol.cells.cx(i), ol.cells.cy(j))) cells.push_back({i, j});
-        if (!cells.empty()) mine.cells.emplace_back(static_cast<int>(pos), std::move(cells));
-    }
-    const double margin = plan::group_reach(settings) + kCopyReach;
+    const double margin = kCopyWindow;
+    const Clock::time_point t0 = Clock::now();
     const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, margin);
     const plan::Obstacles obstacles(seen, settings);
-    SharedCavities cavities(stack);
+    SharedCavities cavities(first_copy);
+    log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     progress.say("planning one of {} copies", n);
-    GroupPlanned one = plan_group(plan::group_points(detected, mine), plan::group_overhangs(overhangs, mine), stack,
-                                  obstacles, settings, cavities, log, &progress);
+    GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress);
     // Everything within the window, short of its edge by more than any column is wide.
     const layers::Bounds inner{first.min_x - margin + kCopyReach, first.min_y - margin + kCopyReach,
                                first.max_x + margin - kCopyReach, first.max_y + margin - kCopyReach};
     auto inside = [&](const layers::Bounds& b, double x, double y) {
         return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y;
     };
+    auto past_the_window = [&] {
+        log.debug("the first copy's plan reaches the edge of the window it was planned in: the plate is planned whole");
+        return std::nullopt;
+    };
     for (const plan::Column& c : one.scaffold.columns) {
-        if (!inside(inner, c.x0, c.y0) || !inside(inner, c.x1, c.y1)) return std::nullopt;
+        if (!inside(inner, c.x0, c.y0) || !inside(inner, c.x1, c.y1)) return past_the_window();
         if (c.base == plan::Base::Model && !inside(first, c.x0, c.y0)) {
             log.debug("a column stands on the model at ({:.2f}, {:.2f}), outside the first copy: the plate is planned whole",
                       c.x0, c.y0);
@@ -345,16 +324,18 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const over
         }
     }
     for (const plan::Bridge& b : one.scaffold.bridges)
-        if (!inside(inner, b.x0, b.y0) || !inside(inner, b.x1, b.y1)) return std::nullopt;
-    log.debug("{} exact copies: one planned ({} support points), its plan moved to the others", n, count[0]);
+        if (!inside(inner, b.x0, b.y0) || !inside(inner, b.x1, b.y1)) return past_the_window();
+    const std::size_t count = detected.points.size();
+    log.debug("{} exact copies: one planned ({} support points, {:.0f} ms), its plan moved to the others", n, count,
+              1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     std::vector<plan::PointGroup> groups(n);
     std::vector<plan::GroupPlan> plans(n);
     overhang::SupportPoints input;
-    input.overhang_area_mm2 = detected.overhang_area_mm2;
+    input.overhang_area_mm2 = static_cast<double>(n) * detected.overhang_area_mm2;
     const plan::GroupPlan planned{std::move(one.points), std::move(one.scaffold)};
     for (std::size_t k = 0; k < n; ++k) {
         plans[k] = plan::moved(planned, copies.offsets[k].dx, copies.offsets[k].dy);
-        for (std::size_t i = 0; i < count[0]; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
             groups[k].index.push_back(static_cast<int>(input.points.size()));
             input.points.push_back(plans[k].points.points[i]);
         }
@@ -491,13 +472,21 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // them, the largest part of a big file's memory.
     std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
+    // A plate of exact copies: the first copy's overhangs found and planned,
+    // its plan moved to the others.
+    std::optional<layers::Copies> copies;
+    if (req.plan_copies && settings.method != Method::None && !stack.z_varies && own_support_mm == 0)
+        copies = layers::find_copies(stack, 2 * kPointReach + settings.resolution);
+    layers::LayerStack first_copy;
+    if (copies) first_copy = layers::first_copy(stack, *copies);
+    time.lap("copies");
     progress.say("finding overhangs");
-    const overhang::Overhangs overhangs = overhang::find_overhangs(stack, settings);
-    overhang::SupportPoints points = overhang::place_points(overhangs, stack, settings);
+    overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
+    overhang::SupportPoints points = overhang::place_points(overhangs, copies ? first_copy : stack, settings);
     time.lap("overhangs");
     if (auto it = req.files.find("dump-points"); it != req.files.end()) overhang::write_points_json(it->second, points);
     if (auto it = req.files.find("dump-layers"); it != req.files.end())
-        overhang::write_layer_svgs(it->second, overhangs, points, stack, settings);
+        overhang::write_layer_svgs(it->second, overhangs, points, copies ? first_copy : stack, settings);
     // Planning grows with the points' density, not the file's size: many
     // points may take tens of seconds (bunny.slic3r13 at --min-overhang-area
     // 0, 150 points: 17 s), so say so.
@@ -508,19 +497,22 @@ Outcome run(const Request& req, spdlog::logger& log) {
         log.info("bed levelling is baked into the file (Z follows the bed within each layer): the support follows the "
                  "same mesh, as the model's own moves give it");
 
-    const overhang::SupportPoints detected = points;
-    plan::Scaffold scaffold;
-    toolpath::SupportPaths paths;
-    // A plate of exact copies: one planned, its plan moved to the others.
     std::optional<GroupPlanned> copied;
-    if (req.plan_copies && !stack.z_varies && own_support_mm == 0 && !detected.points.empty())
-        if (const auto copies = layers::find_copies(stack, 2 * kPointReach + settings.resolution))
-            copied = plan_copies(*copies, detected, overhangs, stack, settings, log, progress);
-    GroupPlanned planned = copied ? std::move(*copied) : plan_plate(req, detected, overhangs, stack, settings, log, progress);
+    if (copies && !points.points.empty()) {
+        copied = plan_copies(*copies, first_copy, points, overhangs, stack, settings, log, progress);
+        if (!copied) {
+            // The whole plate's overhangs, then, as for any plate.
+            progress.say("finding overhangs on the whole plate");
+            overhangs = overhang::find_overhangs(stack, settings);
+            points = overhang::place_points(overhangs, stack, settings);
+        }
+    }
+    first_copy = {};
+    GroupPlanned planned = copied ? std::move(*copied) : plan_plate(req, points, overhangs, stack, settings, log, progress);
     copied.reset();
     points = std::move(planned.points);
-    scaffold = std::move(planned.scaffold);
-    paths = std::move(planned.paths);
+    plan::Scaffold scaffold = std::move(planned.scaffold);
+    toolpath::SupportPaths paths = std::move(planned.paths);
     time.lap("plan");
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())

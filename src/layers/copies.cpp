@@ -161,6 +161,41 @@ std::optional<Copies> find_copies(const LayerStack& stack, double apart) {
     return out;
 }
 
+namespace {
+
+bool within(const Bounds& b, double x, double y) { return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y; }
+
+// A bead of the first copy: a model bead with both ends in its box (copies'
+// boxes lie apart).
+bool first_copys(const Layer& layer, const Segment& s, const Copies& copies) {
+    return model_bead(layer, s) && within(copies.prototype, s.x0, s.y0) && within(copies.prototype, s.x1, s.y1);
+}
+
+// The layers as they are, without their beads.
+LayerStack bare(const LayerStack& stack, const Bounds& bounds) {
+    LayerStack out;
+    out.bounds = bounds;
+    out.z_varies = stack.z_varies;
+    out.mesh = stack.mesh;
+    out.layers.reserve(stack.layers.size());
+    for (const Layer& layer : stack.layers) {
+        Layer l = layer;
+        std::vector<Segment>().swap(l.segments);
+        out.layers.push_back(std::move(l));
+    }
+    return out;
+}
+
+}  // namespace
+
+LayerStack first_copy(const LayerStack& stack, const Copies& copies) {
+    LayerStack out = bare(stack, copies.prototype);
+    for (std::size_t l = 0; l < stack.layers.size(); ++l)
+        for (const Segment& s : stack.layers[l].segments)
+            if (first_copys(stack.layers[l], s, copies)) out.layers[l].segments.push_back(s);
+    return out;
+}
+
 LayerStack seen_from_every_copy(const LayerStack& stack, const Copies& copies, double margin) {
     const Bounds window = grown(copies.prototype, margin);
     // Where another copy stands as seen from one: every difference of two
@@ -177,15 +212,10 @@ LayerStack seen_from_every_copy(const LayerStack& stack, const Copies& copies, d
             });
             if (!known) around.push_back(d);
         }
-    auto in = [](const Bounds& b, double x, double y) { return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y; };
-    LayerStack out;
-    out.bounds = window;
-    out.z_varies = stack.z_varies;
-    out.mesh = stack.mesh;
-    out.layers.reserve(stack.layers.size());
-    for (const Layer& layer : stack.layers) {
-        Layer seen = layer;
-        seen.segments.clear();
+    LayerStack out = bare(stack, window);
+    for (std::size_t l = 0; l < stack.layers.size(); ++l) {
+        const Layer& layer = stack.layers[l];
+        std::vector<Segment>& seen = out.layers[l].segments;
         auto add = [&](const Segment& s, double dx, double dy) {
             Segment m = s;
             m.x0 = static_cast<float>(s.x0 + dx);
@@ -195,19 +225,17 @@ LayerStack seen_from_every_copy(const LayerStack& stack, const Copies& copies, d
             const double r = m.width / 2;
             const Bounds box{std::min(m.x0, m.x1) - r, std::min(m.y0, m.y1) - r, std::max(m.x0, m.x1) + r,
                              std::max(m.y0, m.y1) + r};
-            if (meets(box, window)) seen.segments.push_back(m);
+            if (meets(box, window)) seen.push_back(m);
         };
         for (const Segment& s : layer.segments) {
-            if (model_bead(layer, s)) {
+            if (first_copys(layer, s, copies)) {
                 // The first copy's beads stand for every copy's.
-                if (in(copies.prototype, s.x0, s.y0) && in(copies.prototype, s.x1, s.y1))
-                    for (const Offset& d : around) add(s, d.dx, d.dy);
-            } else {
+                for (const Offset& d : around) add(s, d.dx, d.dy);
+            } else if (!model_bead(layer, s)) {
                 for (const Offset& o : copies.offsets) add(s, -o.dx, -o.dy);
             }
         }
-        seen.segments.shrink_to_fit();
-        out.layers.push_back(std::move(seen));
+        seen.shrink_to_fit();
     }
     return out;
 }

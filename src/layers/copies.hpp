@@ -37,6 +37,10 @@ inline constexpr double kCopyTolerance = 0.003;
 // no copy; a file holding support of its own is no plate of copies.
 std::optional<Copies> find_copies(const LayerStack& stack, double apart);
 
+// The first copy alone: its beads (nothing else), the same layers
+// (heights, order) as `stack`, its box as bounds.
+LayerStack first_copy(const LayerStack& stack, const Copies& copies);
+
 // The layers as the first copy sees its surroundings from every copy's
 // place at once: within `margin` mm of its box, each copy's neighbours (and
 // the skirt, purge lines) moved by the offset that brings that copy onto the
