@@ -3,6 +3,7 @@
 #include "gcode/format.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -49,9 +50,20 @@ constexpr int kBarRounds = 6;
 // points, braces' helper pillars within 12 mm of their columns.
 constexpr double kCopyWindow = 25.0;
 constexpr double kCopyReach = 10.0;
-// mm: copies nearer each other than twice this are planned as a whole
-// plate (a support point stands on its copy's beads, within its box).
-constexpr double kPointReach = 1.0;
+
+// Whether a column standing on the model stands on the first copy's beads
+// (within its radius and a millimetre of one on the layer it rests on).
+bool on_first_copy(const plan::Column& c, const layers::LayerStack& first_copy) {
+    for (const layers::Layer& layer : first_copy.layers) {
+        if (layer.purge || std::abs(layer.z - c.z0) > layers::kZEps) continue;
+        for (const layers::Segment& s : layer.segments) {
+            const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, len2 = dx * dx + dy * dy;
+            const double t = len2 > 0 ? std::clamp(((c.x0 - s.x0) * dx + (c.y0 - s.y0) * dy) / len2, 0.0, 1.0) : 0.0;
+            if (std::hypot(s.x0 + t * dx - c.x0, s.y0 + t * dy - c.y0) <= c.radius + s.width / 2 + 1.0) return true;
+        }
+    }
+    return false;
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -317,7 +329,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     };
     for (const plan::Column& c : one.scaffold.columns) {
         if (!inside(inner, c.x0, c.y0) || !inside(inner, c.x1, c.y1)) return past_the_window();
-        if (c.base == plan::Base::Model && !inside(first, c.x0, c.y0)) {
+        if (c.base == plan::Base::Model && !on_first_copy(c, first_copy)) {
             log.debug("a column stands on the model at ({:.2f}, {:.2f}), outside the first copy: the plate is planned whole",
                       c.x0, c.y0);
             return std::nullopt;
@@ -475,8 +487,11 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // A plate of exact copies: the first copy's overhangs found and planned,
     // its plan moved to the others.
     std::optional<layers::Copies> copies;
-    if (req.plan_copies && settings.method != Method::None && !stack.z_varies && own_support_mm == 0)
-        copies = layers::find_copies(stack, 2 * kPointReach + settings.resolution);
+    if (req.plan_copies && settings.method != Method::None && !stack.z_varies && own_support_mm == 0) {
+        std::string why;
+        copies = layers::find_copies(stack, &why);
+        if (!copies) log.debug("not a plate of copies: {}", why);
+    }
     layers::LayerStack first_copy;
     if (copies) first_copy = layers::first_copy(stack, *copies);
     time.lap("copies");

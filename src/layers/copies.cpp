@@ -41,6 +41,7 @@ struct Object {
     Bounds box = empty_bounds();
     double ax = std::numeric_limits<double>::infinity(), ay = ax;  // lowest endpoint x and y: where it is
     std::vector<std::vector<const Segment*>> layers;                 // its beads, per layer
+    std::vector<std::vector<std::uint32_t>> index;                   // the same by index in Layer::segments
 };
 
 // Whether b's beads are a's, moved (each object's beads by its own
@@ -101,16 +102,20 @@ bool same_beads(const Object& a, const Object& b) {
 
 }  // namespace
 
-std::optional<Copies> find_copies(const LayerStack& stack, double apart) {
+std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
+    auto no = [why](std::string reason) -> std::optional<Copies> {
+        if (why) *why = std::move(reason);
+        return std::nullopt;
+    };
     Bounds all = empty_bounds();
     for (const Layer& layer : stack.layers)
         for (const Segment& s : layer.segments) {
             if (!model_bead(layer, s)) continue;
-            if (gcode::is_support(s.role) || layer.slicer_support) return std::nullopt;
+            if (gcode::is_support(s.role) || layer.slicer_support) return no("the file holds support of its own");
             extend(all, s.x0, s.y0, s.width);
             extend(all, s.x1, s.y1, s.width);
         }
-    if (all.empty()) return std::nullopt;
+    if (all.empty()) return no("no model");
     // Objects: the pieces of the model's footprint over all layers, beads
     // drawn at least kCopyJoin wide on cells of half that.
     BitGrid grid(all.min_x - kCopyJoin, all.min_y - kCopyJoin, all.max_x + kCopyJoin, all.max_y + kCopyJoin,
@@ -119,23 +124,28 @@ std::optional<Copies> find_copies(const LayerStack& stack, double apart) {
         for (const Segment& s : layer.segments)
             if (model_bead(layer, s)) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, std::max<double>(s.width, kCopyJoin));
     const std::vector<std::vector<Cell>> pieces = components(grid);
-    if (pieces.size() < 2 || pieces.size() > kMaxObjects) return std::nullopt;
+    if (pieces.size() < 2) return no("one object");
+    if (pieces.size() > kMaxObjects) return no(std::to_string(pieces.size()) + " separate pieces");
     std::vector<int> label(static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()), -1);
     for (std::size_t p = 0; p < pieces.size(); ++p)
         for (const Cell& c : pieces[p])
             label[static_cast<std::size_t>(c.j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(c.i)] =
                 static_cast<int>(p);
     std::vector<Object> objects(pieces.size());
-    for (Object& o : objects) o.layers.resize(stack.layers.size());
+    for (Object& o : objects) {
+        o.layers.resize(stack.layers.size());
+        o.index.resize(stack.layers.size());
+    }
     for (std::size_t l = 0; l < stack.layers.size(); ++l)
         for (const Segment& s : stack.layers[l].segments) {
             if (!model_bead(stack.layers[l], s)) continue;
             const int i = grid.col(s.x0), j = grid.row(s.y0);
-            if (i < 0 || j < 0 || i >= grid.width() || j >= grid.height()) return std::nullopt;
+            if (i < 0 || j < 0 || i >= grid.width() || j >= grid.height()) return no("a bead off the grid");
             const int p = label[static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(i)];
-            if (p < 0) return std::nullopt;  // never: the bead's own cell is drawn
+            if (p < 0) return no("a bead in no object");  // never: the bead's own cell is drawn
             Object& o = objects[static_cast<std::size_t>(p)];
             o.layers[l].push_back(&s);
+            o.index[l].push_back(static_cast<std::uint32_t>(&s - stack.layers[l].segments.data()));
             extend(o.box, s.x0, s.y0, s.width / 2);
             extend(o.box, s.x1, s.y1, s.width / 2);
             o.ax = std::min({o.ax, static_cast<double>(s.x0), static_cast<double>(s.x1)});
@@ -147,29 +157,22 @@ std::optional<Copies> find_copies(const LayerStack& stack, double apart) {
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return place(objects[a]) < place(objects[b]); });
     const Object& first = objects[order.front()];
-    for (std::size_t a = 0; a < objects.size(); ++a)
-        for (std::size_t b = a + 1; b < objects.size(); ++b)
-            if (meets(grown(objects[a].box, apart / 2), grown(objects[b].box, apart / 2))) return std::nullopt;
     Copies out;
     out.prototype = first.box;
+    out.beads = first.index;
+    out.beads.resize(stack.layers.size());
     for (const auto& segs : first.layers) out.segments += segs.size();
     for (std::size_t k : order) {
         const Object& o = objects[k];
-        if (&o != &first && !same_beads(first, o)) return std::nullopt;
+        if (&o != &first && !same_beads(first, o))
+            return no("object " + std::to_string(out.offsets.size() + 1) + " of " + std::to_string(objects.size()) +
+                      " is no exact copy of the first");
         out.offsets.push_back({o.ax - first.ax, o.ay - first.ay});
     }
     return out;
 }
 
 namespace {
-
-bool within(const Bounds& b, double x, double y) { return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y; }
-
-// A bead of the first copy: a model bead with both ends in its box (copies'
-// boxes lie apart).
-bool first_copys(const Layer& layer, const Segment& s, const Copies& copies) {
-    return model_bead(layer, s) && within(copies.prototype, s.x0, s.y0) && within(copies.prototype, s.x1, s.y1);
-}
 
 // The layers as they are, without their beads.
 LayerStack bare(const LayerStack& stack, const Bounds& bounds) {
@@ -191,8 +194,7 @@ LayerStack bare(const LayerStack& stack, const Bounds& bounds) {
 LayerStack first_copy(const LayerStack& stack, const Copies& copies) {
     LayerStack out = bare(stack, copies.prototype);
     for (std::size_t l = 0; l < stack.layers.size(); ++l)
-        for (const Segment& s : stack.layers[l].segments)
-            if (first_copys(stack.layers[l], s, copies)) out.layers[l].segments.push_back(s);
+        for (std::uint32_t i : copies.beads[l]) out.layers[l].segments.push_back(stack.layers[l].segments[i]);
     return out;
 }
 
@@ -227,14 +229,12 @@ LayerStack seen_from_every_copy(const LayerStack& stack, const Copies& copies, d
                              std::max(m.y0, m.y1) + r};
             if (meets(box, window)) seen.push_back(m);
         };
-        for (const Segment& s : layer.segments) {
-            if (first_copys(layer, s, copies)) {
-                // The first copy's beads stand for every copy's.
-                for (const Offset& d : around) add(s, d.dx, d.dy);
-            } else if (!model_bead(layer, s)) {
+        // The first copy's beads stand for every copy's.
+        for (std::uint32_t i : copies.beads[l])
+            for (const Offset& d : around) add(layer.segments[i], d.dx, d.dy);
+        for (const Segment& s : layer.segments)
+            if (!model_bead(layer, s))
                 for (const Offset& o : copies.offsets) add(s, -o.dx, -o.dy);
-            }
-        }
         seen.shrink_to_fit();
     }
     return out;

@@ -7,7 +7,9 @@
 // moved, within a few microns (the file's three decimals). Anything else
 // (Cura's meshes sliced one by one on the global infill grid, a different
 // object, the slicer's own support) is no plate of copies.
+#include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -21,21 +23,24 @@ struct Offset {
 struct Copies {
     Bounds prototype;              // the first copy's box, beads' widths included
     std::vector<Offset> offsets;   // each copy's from the first: (0, 0) first, then by y, then x
-    std::size_t segments = 0;      // the first copy's beads, all layers
+    // The first copy's beads: per layer, their indices in Layer::segments
+    // (boxes may overlap where a slicer nests copies by their outlines).
+    std::vector<std::vector<std::uint32_t>> beads;
+    std::size_t segments = 0;      // of them, all layers
 };
 
-// Beads closer than this belong to one object (a copy standing nearer its
-// neighbour is no separate copy; the plate is then planned whole).
+// Beads closer than about this belong to one object (copies standing
+// nearer each other are one object: the plate is then planned whole).
 inline constexpr double kCopyJoin = 1.0;
 // Largest difference, mm, between a bead of a copy moved onto the first and
 // the first's matching bead.
 inline constexpr double kCopyTolerance = 0.003;
 
 // The plate's copies, or nullopt unless the model's beads form at least two
-// objects, each an exact copy of the first (lowest, then leftmost), whose
-// boxes grown by `apart` mm do not meet. Skirts and purge lines belong to
-// no copy; a file holding support of its own is no plate of copies.
-std::optional<Copies> find_copies(const LayerStack& stack, double apart);
+// objects, each an exact copy of the first (lowest, then leftmost). Skirts
+// and purge lines belong to no copy; a file holding support of its own is
+// no plate of copies. `why` (optional) says why not, for the log.
+std::optional<Copies> find_copies(const LayerStack& stack, std::string* why = nullptr);
 
 // The first copy alone: its beads (nothing else), the same layers
 // (heights, order) as `stack`, its box as bounds.

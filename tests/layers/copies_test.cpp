@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "layers/copies.hpp"
@@ -40,7 +41,7 @@ layers::LayerStack plate(const std::vector<double>& xs, double shift_last = 0, b
 }  // namespace
 
 TEST(Copies, ThreeBoxesAreCopiesOfTheFirstWithTheirOffsets) {
-    const auto c = layers::find_copies(plate({70.125, 10, 40.5}), 3);
+    const auto c = layers::find_copies(plate({70.125, 10, 40.5}));
     ASSERT_TRUE(c.has_value());
     ASSERT_EQ(c->offsets.size(), 3u);
     // The first is the leftmost of the lowest; the others by x.
@@ -56,34 +57,58 @@ TEST(Copies, ThreeBoxesAreCopiesOfTheFirstWithTheirOffsets) {
 }
 
 TEST(Copies, ABeadPrintedTheOtherWayRoundIsTheSameBead) {
-    EXPECT_TRUE(layers::find_copies(plate({10, 40}, 0, true), 3).has_value());
+    EXPECT_TRUE(layers::find_copies(plate({10, 40}, 0, true)).has_value());
 }
 
 TEST(Copies, ABeadTenMicronsOffIsNoCopy) {
-    EXPECT_TRUE(layers::find_copies(plate({10, 40}, 0.002), 3).has_value());  // within the file's rounding
-    EXPECT_FALSE(layers::find_copies(plate({10, 40}, 0.01), 3).has_value());
+    EXPECT_TRUE(layers::find_copies(plate({10, 40}, 0.002)).has_value());  // within the file's rounding
+    EXPECT_FALSE(layers::find_copies(plate({10, 40}, 0.01)).has_value());
 }
 
 TEST(Copies, ADifferentRoleIsNoCopy) {
     layers::LayerStack st = plate({10, 40});
     st.layers[2].segments.back().role = gcode::Role::SolidInfill;
-    EXPECT_FALSE(layers::find_copies(st, 3).has_value());
+    EXPECT_FALSE(layers::find_copies(st).has_value());
 }
 
-TEST(Copies, OneObjectOrCopiesTooCloseAreNoPlateOfCopies) {
-    EXPECT_FALSE(layers::find_copies(plate({10}), 3).has_value());
-    // 2 mm between the boxes' beads: separate objects, but nearer than `apart`.
-    EXPECT_TRUE(layers::find_copies(plate({10, 22}), 1).has_value());
-    EXPECT_FALSE(layers::find_copies(plate({10, 22}), 3).has_value());
+TEST(Copies, OneObjectOrCopiesTouchingAreNoPlateOfCopies) {
+    std::string why;
+    EXPECT_FALSE(layers::find_copies(plate({10}), &why).has_value());
+    EXPECT_EQ(why, "one object");
+    // 0.15 mm between the boxes' beads: one object.
+    EXPECT_FALSE(layers::find_copies(plate({10, 20.6})).has_value());
+    // 1.55 mm: two.
+    EXPECT_TRUE(layers::find_copies(plate({10, 22})).has_value());
+}
+
+// A slicer nests copies by their outlines: their boxes may overlap. An L
+// and the same L moved into its corner.
+TEST(Copies, CopiesWhoseBoxesOverlapAreCopies) {
+    auto ell = [](layers::Layer& l, double x, double y) {
+        bead(l, x, y, x + 20, y, gcode::Role::ExternalPerimeter);
+        bead(l, x, y, x, y + 20, gcode::Role::ExternalPerimeter);
+    };
+    const layers::LayerStack st = test::stack_of(
+        3, [&](int, layers::Layer& l) { ell(l, 10, 10); ell(l, 13, 13); }, {0, 0, 60, 60});
+    const auto c = layers::find_copies(st);
+    ASSERT_TRUE(c.has_value());
+    ASSERT_EQ(c->offsets.size(), 2u);
+    EXPECT_NEAR(c->offsets[1].dx, 3, 1e-4);
+    // The first copy's beads are its own, though the other's lie in its box.
+    ASSERT_EQ(c->beads[1].size(), 2u);
+    EXPECT_EQ(c->beads[1][0], 0u);
+    EXPECT_EQ(c->beads[1][1], 1u);
+    const layers::LayerStack first = layers::first_copy(st, *c);
+    EXPECT_EQ(first.layers[1].segments.size(), 2u);
 }
 
 TEST(Copies, ASkirtAroundThemBelongsToNoCopy) {
     layers::LayerStack st = plate({10, 40});
     bead(st.layers[0], 5, 15, 60, 15, gcode::Role::Skirt);
-    EXPECT_TRUE(layers::find_copies(st, 3).has_value());
+    EXPECT_TRUE(layers::find_copies(st).has_value());
     // The slicer's own support: no plate of copies.
     bead(st.layers[1], 12, 25, 13, 25, gcode::Role::Support);
-    EXPECT_FALSE(layers::find_copies(st, 3).has_value());
+    EXPECT_FALSE(layers::find_copies(st).has_value());
 }
 
 // Three in a row 20 mm apart: the first has a neighbour on its right only,
@@ -91,7 +116,7 @@ TEST(Copies, ASkirtAroundThemBelongsToNoCopy) {
 // both, each the first's beads moved 20 mm, and nothing past the window.
 TEST(Copies, TheFirstSeesANeighbourOnEachSideItHasFromAnyCopy) {
     const layers::LayerStack st = plate({10, 30, 50});
-    const auto c = layers::find_copies(st, 3);
+    const auto c = layers::find_copies(st);
     ASSERT_TRUE(c.has_value());
     const layers::LayerStack seen = layers::seen_from_every_copy(st, *c, 22);
     ASSERT_EQ(seen.layers.size(), st.layers.size());
