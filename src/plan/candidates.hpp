@@ -126,10 +126,11 @@ public:
             return it == wide_.end() ? nullptr : &it->second;
         }
         if (slots_.empty()) return nullptr;
-        for (std::size_t i = BarKeyHash{}(k) & mask_;; i = (i + 1) & mask_) {
+        const std::size_t h = BarKeyHash{}(k);
+        for (std::size_t i = h & mask_;; i = (i + 1) & mask_) {
             const Slot& sl = slots_[i];
             if (!sl.used) return nullptr;
-            if (sl.key == p) return &sl.value;
+            if (sl.hash == static_cast<std::uint32_t>(h) && sl.key == p) return &sl.value;
         }
     }
     bool contains(const BarKey& k) const { return find(k) != nullptr; }
@@ -292,6 +293,11 @@ private:
     std::vector<std::shared_ptr<Scratch>> scratch_;  // per thread
     int threads_ = 1;
     std::mutex model_mutex_;        // the caches below and the model's own (Obstacles fills rasters lazily)
+    // Held while asking the model, when seeds are evaluated on more than one
+    // thread (on one, nobody else asks: no lock to take).
+    std::unique_lock<std::mutex> model_lock() {
+        return threads_ > 1 ? std::unique_lock<std::mutex>(model_mutex_) : std::unique_lock<std::mutex>();
+    }
 };
 
 }  // namespace scaffold::plan
