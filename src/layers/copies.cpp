@@ -17,7 +17,11 @@ namespace {
 
 constexpr std::size_t kMaxObjects = 4096;  // more separate pieces than any plate: no plate of copies
 
-bool model_bead(const Layer& layer, const Segment& s) { return !layer.purge && s.role != gcode::Role::Skirt; }
+// A bead of an object: not a skirt or brim, a wipe tower or a purge line
+// (those belong to no copy; the first copy sees them from every copy's place).
+bool model_bead(const Layer& layer, const Segment& s) {
+    return !layer.purge && s.role != gcode::Role::Skirt && s.role != gcode::Role::WipeTower;
+}
 
 void extend(Bounds& b, double x, double y, double r) {
     b.min_x = std::min(b.min_x, x - r);

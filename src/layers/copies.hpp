@@ -37,9 +37,9 @@ inline constexpr double kCopyJoin = 1.0;
 inline constexpr double kCopyTolerance = 0.003;
 
 // The plate's copies, or nullopt unless the model's beads form at least two
-// objects, each an exact copy of the first (lowest, then leftmost). Skirts
-// and purge lines belong to no copy; a file holding support of its own is
-// no plate of copies. `why` (optional) says why not, for the log.
+// objects, each an exact copy of the first (lowest, then leftmost). Skirts,
+// wipe towers and purge lines belong to no copy; a file holding support of
+// its own is no plate of copies. `why` (optional) says why not, for the log.
 std::optional<Copies> find_copies(const LayerStack& stack, std::string* why = nullptr);
 
 // The first copy alone: its beads (nothing else), the same layers

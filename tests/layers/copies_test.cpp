@@ -102,9 +102,12 @@ TEST(Copies, CopiesWhoseBoxesOverlapAreCopies) {
     EXPECT_EQ(first.layers[1].segments.size(), 2u);
 }
 
-TEST(Copies, ASkirtAroundThemBelongsToNoCopy) {
+TEST(Copies, ASkirtOrAWipeTowerBelongsToNoCopy) {
     layers::LayerStack st = plate({10, 40});
     bead(st.layers[0], 5, 15, 60, 15, gcode::Role::Skirt);
+    EXPECT_TRUE(layers::find_copies(st).has_value());
+    // A wipe tower beside them neither.
+    for (auto& l : st.layers) bead(l, 80, 20, 90, 20, gcode::Role::WipeTower);
     EXPECT_TRUE(layers::find_copies(st).has_value());
     // The slicer's own support: no plate of copies.
     bead(st.layers[1], 12, 25, 13, 25, gcode::Role::Support);
