@@ -215,6 +215,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     toolpath::SupportPaths paths;
     std::vector<plan::Bridge> forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
+    plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
     bool bars_held = false;  // the last plan's bars checked and all held
     // Should the rounds run out, each plan still keeping a few such bars: the
     // plan with the fewest that carry points (brace bars are left out below);
@@ -231,7 +232,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             progress->say("planning again without {} bars (plan {} of at most {})", forbidden.size(), round + 1, kBarRounds + 1);
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, obstacles, settings)
-                                                      : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers, hollows);
+                                                      : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers,
+                                                                            hollows, &replay);
         // A tip set off its point (a slot, a wall) holds less of the sheet than
         // the point stood for (METHOD's rule (c)): what it leaves gets points and
         // pillars of its own, a few rounds at most.
@@ -268,6 +270,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
                   1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     }
+    if (replay.offers_replayed > 0)
+        log.debug("plans made again resumed their bridge search: {} offers not made again", replay.offers_replayed);
     if (log.should_log(spdlog::level::trace)) {
         for (const plan::Column& c : scaffold.columns)
             log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "

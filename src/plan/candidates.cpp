@@ -94,14 +94,14 @@ struct BridgeSearch::Index {
 
 BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings, int threads,
                            std::shared_ptr<ModelAnswers> answers)
-    : model_(model), s_(settings), answers_(answers ? std::move(answers) : std::make_shared<ModelAnswers>()),
+    : model_(&model), s_(settings), answers_(answers ? std::move(answers) : std::make_shared<ModelAnswers>()),
       index_(std::make_shared<Index>()) {
     reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
     // By default a second thread only without model queries: with them, on
     // real prints, the queries behind their one lock dominate and the
     // threads wait on each other (a 1204-point anchor: 12.3 s on two
     // threads, 10.3 s on one).
-    if (threads <= 0) threads = model_.disc_clear ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    if (threads <= 0) threads = model_->disc_clear ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     threads_ = std::min(threads, kMaxPlanThreads);
     for (int t = 0; t < threads_; ++t) scratch_.push_back(std::make_shared<Scratch>());
 }
@@ -117,6 +117,17 @@ long microns(double v) {
 }
 
 }  // namespace
+
+BridgeSearch::BridgeSearch(const BridgeSearch& o, const ModelView& model)
+    : model_(&model), s_(o.s_), reach_(o.reach_), points_(o.points_), alive_(o.alive_), seeds_(o.seeds_),
+      dirty_(o.dirty_), ranked_(o.ranked_), rejected_(o.rejected_), answers_(o.answers_), misses_(o.misses_),
+      evaluations_(o.evaluations_), index_(std::make_shared<Index>(*o.index_)), threads_(o.threads_) {
+    for (int t = 0; t < threads_; ++t) scratch_.push_back(std::make_shared<Scratch>());
+}
+
+std::unique_ptr<BridgeSearch> BridgeSearch::clone(const ModelView& model) const {
+    return std::unique_ptr<BridgeSearch>(new BridgeSearch(*this, model));
+}
 
 BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y1, double z) {
     auto r = [](double v) { return microns(v); };
@@ -170,16 +181,16 @@ void BridgeSearch::mark_around(double x, double y) {
 }
 
 bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double z) {
-    if (!model_.segment_clear) return true;
+    if (!model_->segment_clear) return true;
     Key key = key_of(x0, y0, x1, y1, z);
     const auto lock = model_lock();
     if (const bool* known = answers_->bars.find(key)) return *known;
     // The bar fills the layers up to kBarThickness above z; its ends reach
     // into the pillar tops, so the whole pillar radius keeps the gap.
-    std::vector<double> layers = model_.tops_between(z, z + kBarThickness, s_.layer_height);
+    std::vector<double> layers = model_->tops_between(z, z + kBarThickness, s_.layer_height);
     bool ok = !layers.empty();
     for (double zl : layers)
-        ok = ok && model_.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
+        ok = ok && model_->segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
     answers_->bars.insert(key, ok);
     return ok;
 }
@@ -189,11 +200,11 @@ bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double 
 // rather than a best that is taken, fails and is rejected one at a time
 // (elephant: 17,000 such rejects before this test moved here).
 bool BridgeSearch::end_stands(double x, double y, double z) {
-    if (!model_.end_stands) return true;
+    if (!model_->end_stands) return true;
     const Key key{microns(x), microns(y), microns(z), 0, 0};
     const auto lock = model_lock();
     if (const bool* known = answers_->ends.find(key)) return *known;
-    bool ok = model_.end_stands(x, y, z);
+    bool ok = model_->end_stands(x, y, z);
     answers_->ends.insert(key, ok);
     return ok;
 }
@@ -292,7 +303,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     std::vector<double>& heights = sc.heights;
     heights.clear();
     for (const Near& p : pts) {
-        double z = model_.snap_down(p.t);
+        double z = model_->snap_down(p.t);
         if (z > kEps) heights.push_back(z);
     }
     std::sort(heights.begin(), heights.end(), std::greater<>());
@@ -466,7 +477,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
                 if (blocked) blocked_from = std::min(blocked_from, pts[b].du);
                 // Blocked (by the model or a failed check): the same span a few steps lower.
                 for (int j = 1; j < kLowerHeights; ++j) {
-                    double z2 = model_.snap_down(z - j * s_.bridge_height_step);
+                    double z2 = model_->snap_down(z - j * s_.bridge_height_step);
                     if (z2 <= kEps) break;
                     int k2;
                     double w2;

@@ -229,6 +229,9 @@ public:
                  std::shared_ptr<ModelAnswers> answers = nullptr);
     BridgeSearch(const BridgeSearch&) = delete;  // the rtree and buffers are its own
     BridgeSearch& operator=(const BridgeSearch&) = delete;
+    // A copy of the search as it stands (its model's answers shared), asking
+    // `model` from now on: a plan made again resumes from it.
+    std::unique_ptr<BridgeSearch> clone(const ModelView& model) const;
 
     int add(const Active& a);   // returns the point's id
     void remove(int id);
@@ -271,7 +274,8 @@ private:
     void evaluate_all(const std::vector<int>& seeds);
     bool bar_clear(double x0, double y0, double x1, double y1, double z);
 
-    const ModelView& model_;
+    BridgeSearch(const BridgeSearch& other, const ModelView& model);
+    const ModelView* model_;
     const Settings& s_;
     double reach_ = 0;  // radius of the window's bounding circle
     std::vector<Active> points_;

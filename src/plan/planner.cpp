@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <utility>
 
@@ -76,22 +77,93 @@ std::optional<Column> connector(const Candidate& b, const Active& a, const Model
     return std::nullopt;
 }
 
+}  // namespace
+
 struct BridgePlan {
     std::vector<Bridge> bridges;
     std::vector<Column> connectors;
     std::vector<Active> remaining;  // to stand on pillars, in a fixed order
 };
 
+struct BridgeReplay::Log {
+    struct Snap {
+        std::size_t offers = 0;  // made before it
+        std::unique_ptr<BridgeSearch> search;
+        BridgePlan out;
+        long rejects_left = 0;
+    };
+    std::vector<Snap> snaps;            // ascending by offers
+    std::vector<Candidate> offered;     // what the search offered, in order
+    std::vector<char> trapped;          // whether bar_trapped turned it down
+    std::vector<Active> start;          // the points it was made for
+    std::size_t every = 8;              // offers between two kept states
+};
+
+BridgeReplay::BridgeReplay() = default;
+BridgeReplay::~BridgeReplay() = default;
+
+namespace {
+
+// States of a search kept at most: past this, every other one goes and
+// the offers between two double (a plan made again makes at most that many
+// offers again before it reaches where it first differs).
+constexpr std::size_t kReplaySnaps = 64;
+
+bool same_start(const std::vector<Active>& a, const std::vector<Active>& b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](const Active& p, const Active& q) {
+        return p.x == q.x && p.y == q.y && p.z == q.z && p.point == q.point && p.hold == q.hold && p.give == q.give;
+    });
+}
+
 // The greedy loop (METHOD.md step 4): take the best bridge that can really
 // be built, remove what it carries, add its two ends, repeat.
 BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0,
-                        std::shared_ptr<ModelAnswers> answers = nullptr) {
+                        std::shared_ptr<ModelAnswers> answers = nullptr, BridgeReplay* replay = nullptr) {
     BridgePlan out;
-    BridgeSearch search(m, s, threads, std::move(answers));
-    for (const Active& a : start) search.add(a);
+    std::unique_ptr<BridgeSearch> owned;
     // Bounded work where the model is in the way everywhere.
     long rejects_left = 20000 + 400 * static_cast<long>(start.size());
-    while (auto c = search.best()) {
+    BridgeReplay::Log* log = replay ? replay->log.get() : nullptr;
+    if (log && !log->snaps.empty() && same_start(log->start, start)) {
+        // The first offer this plan turns down as trapped where the last did
+        // not: every step before it is the same.
+        std::size_t first = 0;
+        while (first < log->offered.size()) {
+            const Candidate& c = log->offered[first];
+            if (!log->trapped[first] && m.bar_trapped && m.bar_trapped(c.z, c.x0, c.y0, c.x1, c.y1)) break;
+            ++first;
+        }
+        while (log->snaps.size() > 1 && log->snaps.back().offers > first) log->snaps.pop_back();
+        const BridgeReplay::Log::Snap& from = log->snaps.back();
+        owned = from.search->clone(m);
+        out = from.out;
+        rejects_left = from.rejects_left;
+        log->offered.resize(from.offers);
+        log->trapped.resize(from.offers);
+        replay->offers_replayed += static_cast<long long>(from.offers);
+    } else {
+        owned = std::make_unique<BridgeSearch>(m, s, threads, std::move(answers));
+        for (const Active& a : start) owned->add(a);
+        if (replay) {
+            replay->log = std::make_unique<BridgeReplay::Log>();
+            log = replay->log.get();
+            log->start = start;
+        }
+    }
+    BridgeSearch& search = *owned;
+    for (;;) {
+        if (log && log->offered.size() % log->every == 0 &&
+            (log->snaps.empty() || log->snaps.back().offers < log->offered.size())) {
+            log->snaps.push_back({log->offered.size(), search.clone(m), out, rejects_left});
+            if (log->snaps.size() > kReplaySnaps) {
+                std::vector<BridgeReplay::Log::Snap> kept;
+                for (std::size_t i = 0; i < log->snaps.size(); i += 2) kept.push_back(std::move(log->snaps[i]));
+                log->snaps = std::move(kept);
+                log->every *= 2;
+            }
+        }
+        auto c = search.best();
+        if (!c) break;
         const double len = std::hypot(c->x1 - c->x0, c->y1 - c->y0);
         std::vector<Column> connectors;
         std::vector<int> carried;
@@ -99,8 +171,12 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         double hold = 0, give = 0;  // over the connectors: for the pillars under the ends
         // Ends first (cached), then connectors until too many have failed
         // for the gain to stay positive.
-        bool ok = !(m.bar_trapped && m.bar_trapped(c->z, c->x0, c->y0, c->x1, c->y1)) &&
-                  search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
+        const bool trapped = m.bar_trapped && m.bar_trapped(c->z, c->x0, c->y0, c->x1, c->y1);
+        if (log) {
+            log->offered.push_back(*c);
+            log->trapped.push_back(trapped);
+        }
+        bool ok = !trapped && search.end_stands(c->x0, c->y0, c->z) && search.end_stands(c->x1, c->y1, c->z);
         for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
             const int id = c->carried[i];
             const Active& a = search.active(id);
@@ -301,7 +377,7 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, doubl
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers,
-                       const std::function<const Cavities&()>& shared_cavities) {
+                       const std::function<const Cavities&()>& shared_cavities, BridgeReplay* replay) {
     // Layers by z without purge lines: the layer above a height.
     LayerIndex by_z;
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
@@ -333,7 +409,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
         start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
-    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers));
+    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers), replay);
     Scaffold out;
     out.bridges = std::move(plan.bridges);
     out.columns = std::move(plan.connectors);

@@ -4,6 +4,7 @@
 // connectors, so only the bridge ends and the points left over need pillars.
 // Hands on a Scaffold (bridges, connectors, pillars) in plain geometry.
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -48,6 +49,20 @@ inline constexpr double kForbiddenBeside = 0.5;
 inline constexpr double kForbiddenAngleDeg = 5.0;
 bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& bar, double layer_height);
 
+// A plan's bridge search kept as it went, so a plan made again of the same
+// points without some more bars (the pipeline's rounds) resumes from the
+// last step before the two can first differ instead of starting over. The
+// greedy search takes the same steps until it is first offered a bar now
+// forbidden (the forbidden are turned down as they are offered), so the plan
+// is the one a search from the start makes. Kept every few offers.
+struct BridgeReplay {
+    BridgeReplay();
+    ~BridgeReplay();
+    struct Log;
+    std::unique_ptr<Log> log;
+    long long offers_replayed = 0;  // offers not made again, over all plans (for the log)
+};
+
 // The pipeline's: the same bridges, but every pillar (under points and
 // bridge ends) is dropped by drop_pillar, which steps around the model, and
 // a bridge is placed only where both its ends get one. Plans made again on
@@ -56,6 +71,6 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& bar, dou
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                        const Obstacles& obstacles, const Settings& settings,
                        const std::vector<Bridge>& forbidden = {}, std::shared_ptr<ModelAnswers> answers = nullptr,
-                       const std::function<const Cavities&()>& cavities = nullptr);
+                       const std::function<const Cavities&()>& cavities = nullptr, BridgeReplay* replay = nullptr);
 
 }  // namespace scaffold::plan

@@ -1,0 +1,76 @@
+// A plan made again without more bars resumes its bridge search where the
+// two can first differ (plan::BridgeReplay): the same plan as one searched
+// from the start, round after round.
+#include <gtest/gtest.h>
+
+#include <tuple>
+#include <vector>
+
+#include "plan/obstacles.hpp"
+#include "plan/planner.hpp"
+#include "support/stacks.hpp"
+
+using namespace scaffold;
+
+namespace {
+
+using Geometry = std::vector<std::tuple<double, double, double, double, double, double, double>>;
+
+Geometry geometry(const plan::Scaffold& sc) {
+    Geometry g;
+    for (const plan::Bridge& b : sc.bridges) g.emplace_back(b.x0, b.y0, b.x1, b.y1, b.z, -1, -1);
+    for (const plan::Column& c : sc.columns) g.emplace_back(c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius);
+    return g;
+}
+
+}  // namespace
+
+TEST(BridgeReplay, APlanMadeAgainWithoutMoreBarsIsTheOneSearchedFromTheStart) {
+    const Settings s;
+    const layers::LayerStack st = test::empty_stack(16, 70);
+    const plan::Obstacles obs(st, s);
+    // A 12 x 8 grid of points 4 mm apart under sheets at z 8 to 11.
+    overhang::SupportPoints pts;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 8; ++j) {
+            const int layer = 40 + 5 * ((i + j) % 3);  // top 8.2, 9.2 or 10.2
+            pts.points.push_back({20.0 + 4 * i, 20.0 + 4 * j, 0.2 * layer, layer});
+        }
+    plan::BridgeReplay replay;
+    std::vector<plan::Bridge> forbidden;
+    const auto answers = std::make_shared<plan::ModelAnswers>();
+    plan::Scaffold resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
+    // Enough bars that the middle one is offered after the first kept state
+    // past the start (8 offers) and well before the last.
+    ASSERT_GE(resumed.bridges.size(), 20u);
+    EXPECT_EQ(replay.offers_replayed, 0);
+    // Two rounds, each forbidding the middle bar of the plan before: a plan
+    // resumed past where it was first offered would keep it.
+    for (int round = 0; round < 2; ++round) {
+        forbidden.push_back(resumed.bridges[resumed.bridges.size() / 2]);
+        const plan::Scaffold fresh = plan::plan_scaffold(pts, st, obs, s, forbidden);
+        resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
+        EXPECT_EQ(geometry(resumed), geometry(fresh)) << "round " << round;
+        for (const plan::Bridge& b : resumed.bridges)
+            EXPECT_FALSE(plan::near_forbidden(forbidden, b, s.layer_height)) << "round " << round;
+        EXPECT_EQ(resumed.dropped_points, fresh.dropped_points);
+        EXPECT_GT(replay.offers_replayed, 0) << "round " << round;
+    }
+}
+
+// Other points: the search starts over, whatever it kept.
+TEST(BridgeReplay, OtherPointsStartOver) {
+    const Settings s;
+    const layers::LayerStack st = test::empty_stack(16, 70);
+    const plan::Obstacles obs(st, s);
+    overhang::SupportPoints a, b;
+    for (int i = 0; i < 6; ++i) {
+        a.points.push_back({20.0 + 4 * i, 30.0, 10.0, 50});
+        b.points.push_back({20.0 + 4 * i, 34.0, 10.0, 50});
+    }
+    plan::BridgeReplay replay;
+    plan::plan_scaffold(a, st, obs, s, {}, nullptr, nullptr, &replay);
+    const plan::Scaffold again = plan::plan_scaffold(b, st, obs, s, {}, nullptr, nullptr, &replay);
+    EXPECT_EQ(replay.offers_replayed, 0);
+    EXPECT_EQ(geometry(again), geometry(plan::plan_scaffold(b, st, obs, s)));
+}
