@@ -117,7 +117,10 @@ bool Obstacles::line_clear(int layer, double x0, double y0, double x1, double y1
     for (int k = 0; k <= steps; ++k) {
         double t = static_cast<double>(k) / steps;
         double x = x0 + (x1 - x0) * t, y = y0 + (y1 - y0) * t;
-        if (g.get(g.col(x), g.row(y))) return false;
+        // The cell by multiplying, the exact division only near a border.
+        int i, j;
+        if (!g.sure_cell(x, y, i, j)) i = g.col(x), j = g.row(y);
+        if (g.get(i, j)) return false;
     }
     return true;
 }
