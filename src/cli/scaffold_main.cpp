@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
          "memory, as on a Raspberry Pi; the output is the same for any count)")
         ("whole-plate",
          "plan a plate of exact copies (a slicer's instances of one object) as a whole, as any other plate; by "
-         "default one copy is planned, clear of its neighbours as every copy sees them, and its plan moved to the others")
+         "default one copy is planned, clear of its neighbours as every copy sees them, and its plan moved to the others "
+         "(--dump-points and --dump-layers then show that copy's)")
         ("verbose,v", "log each stage and its timing")
         ("quiet,q", "log errors only");
     po::options_description detect("Overhang detection");
