@@ -214,7 +214,7 @@ public:
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i)
                 for (const layers::Segment* sg : buckets_[static_cast<std::size_t>(j) * nx_ + i])
-                    best = std::min(best, distance(x, y, *sg) - sg->width / 2);
+                    best = std::min(best, layers::segment_distance(x, y, *sg) - sg->width / 2);
         return best;
     }
 
@@ -222,11 +222,6 @@ private:
     static constexpr double kBucket = 1.0;
     int bucket_x(double x) const { return std::clamp(static_cast<int>(std::floor((x - x0_) / kBucket)), 0, nx_ - 1); }
     int bucket_y(double y) const { return std::clamp(static_cast<int>(std::floor((y - y0_) / kBucket)), 0, ny_ - 1); }
-    static double distance(double px, double py, const layers::Segment& s) {
-        const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, l2 = dx * dx + dy * dy;
-        const double t = l2 > 0 ? std::clamp(((px - s.x0) * dx + (py - s.y0) * dy) / l2, 0.0, 1.0) : 0.0;
-        return std::hypot(px - (s.x0 + dx * t), py - (s.y0 + dy * t));
-    }
     double x0_, y0_, reach_;
     int nx_, ny_;
     std::vector<std::vector<const layers::Segment*>> buckets_;

@@ -2,8 +2,8 @@
 
 #include "gcode/format.hpp"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -56,11 +56,8 @@ constexpr double kCopyReach = 10.0;
 bool on_first_copy(const plan::Column& c, const layers::LayerStack& first_copy) {
     for (const layers::Layer& layer : first_copy.layers) {
         if (layer.purge || std::abs(layer.z - c.z0) > layers::kZEps) continue;
-        for (const layers::Segment& s : layer.segments) {
-            const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, len2 = dx * dx + dy * dy;
-            const double t = len2 > 0 ? std::clamp(((c.x0 - s.x0) * dx + (c.y0 - s.y0) * dy) / len2, 0.0, 1.0) : 0.0;
-            if (std::hypot(s.x0 + t * dx - c.x0, s.y0 + t * dy - c.y0) <= c.radius + s.width / 2 + 1.0) return true;
-        }
+        for (const layers::Segment& s : layer.segments)
+            if (layers::segment_distance(c.x0, c.y0, s) <= c.radius + s.width / 2 + 1.0) return true;
     }
     return false;
 }
@@ -313,17 +310,16 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
                                         Progress& progress) {
     const std::size_t n = copies.offsets.size();
     const layers::Bounds first = copies.prototype;
-    const double margin = kCopyWindow;
     const Clock::time_point t0 = Clock::now();
-    const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, margin);
+    const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, kCopyWindow);
     const plan::Obstacles obstacles(seen, settings);
     SharedCavities cavities(first_copy);
     log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     progress.say("planning one of {} copies", n);
     GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress);
     // Everything within the window, short of its edge by more than any column is wide.
-    const layers::Bounds inner{first.min_x - margin + kCopyReach, first.min_y - margin + kCopyReach,
-                               first.max_x + margin - kCopyReach, first.max_y + margin - kCopyReach};
+    const double in = kCopyWindow - kCopyReach;
+    const layers::Bounds inner{first.min_x - in, first.min_y - in, first.max_x + in, first.max_y + in};
     auto inside = [&](const layers::Bounds& b, double x, double y) {
         return x >= b.min_x && x <= b.max_x && y >= b.min_y && y <= b.max_y;
     };
@@ -361,11 +357,10 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     // The paths of all copies made at once: where two copies' columns meet
     // between them they are printed as one, as a plan's own columns are. A
     // travel within one copy's window is asked as the first copy's was.
-    const layers::Bounds reach = inner;
     out.paths = toolpath::make_paths(out.scaffold, stack, settings,
                                      [&](int layer, const toolpath::Point& a, const toolpath::Point& b, double width) {
                                          for (const layers::Offset& o : copies.offsets)
-                                             if (inside(reach, a.x - o.dx, a.y - o.dy) && inside(reach, b.x - o.dx, b.y - o.dy))
+                                             if (inside(inner, a.x - o.dx, a.y - o.dy) && inside(inner, b.x - o.dx, b.y - o.dy))
                                                  return obstacles.segment_clear(layer, a.x - o.dx, a.y - o.dy, b.x - o.dx,
                                                                                 b.y - o.dy, width);
                                          return false;

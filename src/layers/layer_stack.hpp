@@ -2,6 +2,8 @@
 // Layers are the distinct Z heights of extruding moves, in file order.
 // Each knows its line range, z, height and its extrusion segments with
 // width and role. The slicer's layer comments only place the boundaries.
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +23,13 @@ struct Segment {
     gcode::Role role = gcode::Role::Unknown;
     std::uint32_t move = 0;    // index into Program::moves
 };
+
+// Distance from (px, py) to the segment's centre line.
+inline double segment_distance(double px, double py, const Segment& s) {
+    const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((px - s.x0) * dx + (py - s.y0) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(px - (s.x0 + dx * t), py - (s.y0 + dy * t));
+}
 
 struct Layer {
     double z = 0;              // top of the layer (the nozzle height)
