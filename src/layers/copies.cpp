@@ -1,10 +1,8 @@
 #include "layers/copies.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
-#include <tuple>
 #include <unordered_map>
 
 #include "gcode/role.hpp"
@@ -44,8 +42,7 @@ Bounds grown(const Bounds& b, double d) { return {b.min_x - d, b.min_y - d, b.ma
 struct Object {
     Bounds box = empty_bounds();
     double ax = std::numeric_limits<double>::infinity(), ay = ax;  // lowest endpoint x and y: where it is
-    std::vector<std::vector<const Segment*>> layers;                 // its beads, per layer
-    std::vector<std::vector<std::uint32_t>> index;                   // the same by index in Layer::segments
+    std::vector<std::vector<std::uint32_t>> beads;                   // per layer, by index in Layer::segments
 };
 
 // Whether b's beads are a's, moved (each object's beads by its own
@@ -54,7 +51,7 @@ struct Object {
 // (an infill line chained from the other side is the same bead). Looked up
 // by midpoint in cells far wider than the tolerance, the neighbouring cells
 // too, so no rounding can hide a match.
-bool same_beads(const Object& a, const Object& b) {
+bool same_beads(const LayerStack& stack, const Object& a, const Object& b) {
     constexpr double kCell = 0.05;
     // mm²: E's last decimal (1e-5 mm of 1.75 mm filament, 2.4e-5 mm³) over
     // a 0.05 mm layer, with room to spare.
@@ -63,17 +60,19 @@ bool same_beads(const Object& a, const Object& b) {
     auto key = [](long long i, long long j) { return i * 1'000'003LL + j; };
     std::unordered_map<long long, std::vector<std::size_t>> at;
     std::vector<char> used;
-    for (std::size_t l = 0; l < a.layers.size(); ++l) {
-        const auto &sa = a.layers[l], &sb = b.layers[l];
+    for (std::size_t l = 0; l < stack.layers.size(); ++l) {
+        const std::vector<Segment>& segments = stack.layers[l].segments;
+        const auto &sa = a.beads[l], &sb = b.beads[l];
         if (sa.size() != sb.size()) return false;
         if (sa.empty()) continue;
         at.clear();
         used.assign(sa.size(), 0);
         for (std::size_t i = 0; i < sa.size(); ++i) {
-            const Segment& s = *sa[i];
+            const Segment& s = segments[sa[i]];
             at[key(cell((s.x0 + s.x1) / 2.0 - a.ax), cell((s.y0 + s.y1) / 2.0 - a.ay))].push_back(i);
         }
-        for (const Segment* t : sb) {
+        for (std::uint32_t bead : sb) {
+            const Segment* t = &segments[bead];
             const double x0 = t->x0 - b.ax, y0 = t->y0 - b.ay, x1 = t->x1 - b.ax, y1 = t->y1 - b.ay;
             const long long ci = cell((x0 + x1) / 2), cj = cell((y0 + y1) / 2);
             // A width worked out from E (no width comment) carries E's
@@ -87,7 +86,7 @@ bool same_beads(const Object& a, const Object& b) {
                     if (it == at.end()) continue;
                     for (std::size_t i : it->second) {
                         if (used[i]) continue;
-                        const Segment& s = *sa[i];
+                        const Segment& s = segments[sa[i]];
                         if (s.role != t->role || std::abs(s.width - t->width) > width_tolerance) continue;
                         const double u0 = s.x0 - a.ax, v0 = s.y0 - a.ay, u1 = s.x1 - a.ax, v1 = s.y1 - a.ay;
                         if ((near(u0, x0) && near(v0, y0) && near(u1, x1) && near(v1, y1)) ||
@@ -136,10 +135,7 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
             label[static_cast<std::size_t>(c.j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(c.i)] =
                 static_cast<int>(p);
     std::vector<Object> objects(pieces.size());
-    for (Object& o : objects) {
-        o.layers.resize(stack.layers.size());
-        o.index.resize(stack.layers.size());
-    }
+    for (Object& o : objects) o.beads.resize(stack.layers.size());
     for (std::size_t l = 0; l < stack.layers.size(); ++l)
         for (const Segment& s : stack.layers[l].segments) {
             if (!model_bead(stack.layers[l], s)) continue;
@@ -148,8 +144,7 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
             const int p = label[static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(i)];
             if (p < 0) return no("a bead in no object");  // never: the bead's own cell is drawn
             Object& o = objects[static_cast<std::size_t>(p)];
-            o.layers[l].push_back(&s);
-            o.index[l].push_back(static_cast<std::uint32_t>(&s - stack.layers[l].segments.data()));
+            o.beads[l].push_back(static_cast<std::uint32_t>(&s - stack.layers[l].segments.data()));
             extend(o.box, s.x0, s.y0, s.width / 2);
             extend(o.box, s.x1, s.y1, s.width / 2);
             o.ax = std::min({o.ax, static_cast<double>(s.x0), static_cast<double>(s.x1)});
@@ -163,12 +158,10 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
     const Object& first = objects[order.front()];
     Copies out;
     out.prototype = first.box;
-    out.beads = first.index;
-    out.beads.resize(stack.layers.size());
-    for (const auto& segs : first.layers) out.segments += segs.size();
+    out.beads = first.beads;
     for (std::size_t k : order) {
         const Object& o = objects[k];
-        if (&o != &first && !same_beads(first, o))
+        if (&o != &first && !same_beads(stack, first, o))
             return no("object " + std::to_string(out.offsets.size() + 1) + " of " + std::to_string(objects.size()) +
                       " is no exact copy of the first");
         out.offsets.push_back({o.ax - first.ax, o.ay - first.ay});

@@ -26,7 +26,6 @@ struct Copies {
     // The first copy's beads: per layer, their indices in Layer::segments
     // (boxes may overlap where a slicer nests copies by their outlines).
     std::vector<std::vector<std::uint32_t>> beads;
-    std::size_t segments = 0;      // of them, all layers
 };
 
 // Beads closer than about this belong to one object (copies standing

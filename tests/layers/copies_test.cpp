@@ -53,7 +53,9 @@ TEST(Copies, ThreeBoxesAreCopiesOfTheFirstWithTheirOffsets) {
     EXPECT_NEAR(c->prototype.min_x, 9.775, 1e-4);
     EXPECT_NEAR(c->prototype.max_x, 20.225, 1e-4);
     EXPECT_NEAR(c->prototype.min_y, 20.025, 1e-4);
-    EXPECT_EQ(c->segments, 5u * 5u);
+    std::size_t beads = 0;
+    for (const auto& layer : c->beads) beads += layer.size();
+    EXPECT_EQ(beads, 5u * 5u);
 }
 
 TEST(Copies, ABeadPrintedTheOtherWayRoundIsTheSameBead) {
