@@ -148,7 +148,7 @@ public:
         if (say_height) say(restore_height_, layer_.height);
         for (const toolpath::Path& p : paths) path(p);
         retract();
-        travel(saved_.x, saved_.y, saved_.z);
+        travel(saved_.x, saved_.y, std::max(saved_.z, floor_z_));
         if (!saved_.retracted()) unretract();
         if (!saved_.relative_e() && std::abs(e_ - saved_.e) > 1e-9) {
             out_ += "G92";
@@ -174,6 +174,10 @@ public:
         out_ += "; scaffold: end\n";
         return std::move(out_);
     }
+
+    // Never back below z after the block (a bond printed before the nozzle
+    // rose to its layer: the slicer's next move to the layer rises from here).
+    void stay_above(double z) { floor_z_ = z; }
 
     double filament() const { return filament_; }
     double length() const { return length_; }
@@ -401,6 +405,7 @@ private:
     const layers::BedMesh* mesh_;  // null without levelling in the file
     double accel_;                  // mm/s^2, for the time estimate
     double amount_ = 0, e_ = 0, x_ = 0, y_ = 0, z_ = 0;
+    double floor_z_ = -1e300;
     bool retracted_ = false, fan_changed_ = false;
     int fan_ = 0;
     double filament_ = 0, length_ = 0, seconds_ = 0;
@@ -489,6 +494,26 @@ std::uint32_t outside_blocks(const gcode::Program& p, std::uint32_t from, std::u
     return at;
 }
 
+// The line just past the move that brings the nozzle to `layer`'s height
+// (a lift above it counts), from `from` with the machine in `st`; or the
+// layer's first extrusion, should one come first.
+std::uint32_t layer_reached(const gcode::Program& p, gcode::MachineState st, std::uint32_t from,
+                            const layers::Layer& layer) {
+    gcode::Command cmd;
+    std::vector<gcode::Move> moves;
+    for (std::uint32_t l = from; l < layer.end_line && l < p.lines.size(); ++l) {
+        gcode::lex(p.line_text(l), cmd);
+        if (cmd.letter == 0) continue;
+        moves.clear();
+        gcode::step(st, cmd, l, moves);
+        if (l < layer.first_line) continue;
+        for (const gcode::Move& m : moves)
+            if (m.kind == gcode::MoveKind::Extrude) return l;
+        if (st.z >= layer.z - layers::kZEps) return l + 1;
+    }
+    return layer.first_line;
+}
+
 }  // namespace
 
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
@@ -508,7 +533,17 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
     const double accel = planned_acceleration(program);
     for (const toolpath::LayerPaths& lp : paths.layers) {
         const layers::Layer& layer = stack.layers[lp.layer];
-        std::uint32_t at = std::max(line, outside_blocks(program, line, layer.end_line, open, result.blocks_split));
+        // A bond goes in once the nozzle has risen to the layer (it then
+        // descends to the bond and rises again, never over printed model),
+        // before the layer's first extrusion; its block is written at its
+        // own height.
+        const std::uint32_t meant = lp.bond() ? layer_reached(program, st, line, layer) : layer.end_line;
+        layers::Layer bond;
+        if (lp.bond()) {
+            bond.z = lp.bond_z;
+            bond.height = lp.bond_height;
+        }
+        std::uint32_t at = std::max(line, outside_blocks(program, line, meant, open, result.blocks_split));
         for (; line < at && line < program.lines.size(); ++line) {
             std::string_view text = program.line_text(line);
             gcode::lex(text, cmd);
@@ -526,8 +561,9 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
         program.text.release(released, upto);
         released = upto;
-        BlockWriter w(st, settings, layer, fw, roles, last_width, last_height, stack.mesh.empty() ? nullptr : &stack.mesh,
-                      accel);
+        BlockWriter w(st, settings, lp.bond() ? bond : layer, fw, roles, last_width, last_height,
+                      stack.mesh.empty() ? nullptr : &stack.mesh, accel);
+        if (lp.bond()) w.stay_above(lp.bond_z);
         gcode::Edit e;
         e.line = at;
         e.text = w.write(lp.paths);

@@ -115,6 +115,7 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
         const plan::Bridge& br = scaffold.bridges[bi];
         bool bad = false;
         for (const LayerPaths& lp : paths.layers) {
+            if (lp.bond()) continue;  // loops only, under a column's first layer
             const layers::Layer& layer = stack.layers[lp.layer];
             const double z = layer.z;
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
@@ -129,7 +130,7 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
                 if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role))
                     here.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, true, false});
             for (const LayerPaths& under : paths.layers) {
-                const double dz = z - stack.layers[under.layer].z;
+                const double dz = z - printed_z(under, stack);
                 if (dz <= kZEps || dz > 3 * h_nom + kZEps) continue;
                 for (const Path& path : under.paths)
                     for (std::size_t i = 1; i < path.points.size(); ++i)

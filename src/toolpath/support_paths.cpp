@@ -268,6 +268,48 @@ void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridge
     }
 }
 
+// A column's loop on its first layer, where a bond goes under it.
+struct Bonded {
+    double z0 = 0;  // what it stands on
+    Path path;
+    bool single = false;  // a single wall, merged with the loops it crosses
+    Ring ring;
+};
+
+// The bond layers under layer `l` (at z) for the loops of columns starting
+// there, by the z each stands on: evenly spaced through the gap, each at
+// most `most` high, printed in the order of their heights. Crossing loops
+// are merged as on the layer (they stand on solid support: holes kept).
+template <class Finish>
+void add_bonds(std::vector<Bonded>& bonded, int l, double z, double most, const Finish& finish,
+               std::vector<LayerPaths>& out) {
+    std::stable_sort(bonded.begin(), bonded.end(), [](const Bonded& a, const Bonded& b) { return a.z0 < b.z0; });
+    std::vector<LayerPaths> bonds;
+    for (std::size_t i = 0; i < bonded.size();) {
+        std::size_t j = i;
+        while (j < bonded.size() && bonded[j].z0 <= bonded[i].z0 + kZEps) ++j;
+        const double gap = z - bonded[i].z0;
+        const int n = std::max(1, static_cast<int>(std::ceil(gap / most - 1e-9)) - 1);
+        for (int k = 1; k <= n; ++k) {
+            LayerPaths b;
+            b.layer = l;
+            b.bond_height = gap / (n + 1);
+            b.bond_z = bonded[i].z0 + k * b.bond_height;
+            std::vector<std::pair<std::size_t, Ring>> singles;
+            for (std::size_t m = i; m < j; ++m) {
+                if (bonded[m].single) singles.push_back({b.paths.size(), bonded[m].ring});
+                b.paths.push_back(bonded[m].path);
+            }
+            merge_crossing_loops(b.paths, singles, true, nullptr, 0);
+            finish(b);
+            bonds.push_back(std::move(b));
+        }
+        i = j;
+    }
+    std::stable_sort(bonds.begin(), bonds.end(), [](const LayerPaths& a, const LayerPaths& b) { return a.bond_z < b.bond_z; });
+    for (LayerPaths& b : bonds) out.push_back(std::move(b));
+}
+
 }  // namespace
 
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& s,
@@ -306,6 +348,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         std::vector<Square> rafts;
         std::vector<Ring> rings;
         std::vector<std::pair<std::size_t, Ring>> single_loops;  // path index, ring
+        // Loops of columns starting here over a wide gap, by the z they stand on.
+        std::vector<Bonded> bonded;
+        const double bond_gap = kBondGapLayers * std::max(s.layer_height, layer.nominal_height);
+        const double z_below = layer.below >= 0 ? stack.layers[layer.below].z : 0.0;
         for (const plan::Column& c : scaffold.columns) {
             if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             // A column whose base is on the bed starts on the first layer.
@@ -355,11 +401,16 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // Wide pillars get a second wall so they stay stiff; not those
             // widened for METHOD's Standing rule, sized as single walls
             // (for the same stiffness a wider single wall costs less).
+            const bool bond = c.base != plan::Base::Bed && !stack.z_varies && z_below <= c.z0 + kZEps &&
+                              z - c.z0 > bond_gap + kZEps;
             if (plan::second_wall(c, r, w)) {
+                if (bond) bonded.push_back({c.z0, lp.paths.back(), false, rings.back()});
                 Path inner = lp.paths.back();
                 inner.points = loop(cx, cy, r - w * 0.9, w);
+                if (bond) bonded.push_back({c.z0, inner, false, rings.back()});
                 lp.paths.push_back(std::move(inner));
             } else {
+                if (bond) bonded.push_back({c.z0, lp.paths.back(), true, rings.back()});
                 single_loops.push_back({lp.paths.size() - 1, rings.back()});
             }
         }
@@ -381,10 +432,15 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         }
         if (next[l] >= 0) add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s);
         if (lp.paths.empty()) continue;
-        order_paths(lp.paths);
-        if (clear)
-            for (std::size_t i = 1; i < lp.paths.size(); ++i)
-                lp.paths[i].retract = !clear(l, lp.paths[i - 1].points.back(), lp.paths[i].points.front(), s.support_width);
+        auto finish = [&](LayerPaths& e) {
+            order_paths(e.paths);
+            if (clear)
+                for (std::size_t i = 1; i < e.paths.size(); ++i)
+                    e.paths[i].retract =
+                        !clear(l, e.paths[i - 1].points.back(), e.paths[i].points.front(), s.support_width);
+        };
+        add_bonds(bonded, l, z, bond_gap, finish, out.layers);
+        finish(lp);
         printed_at[l] = static_cast<int>(out.layers.size());
         out.layers.push_back(std::move(lp));
     }

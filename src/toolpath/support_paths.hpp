@@ -32,11 +32,28 @@ struct Path {
 struct LayerPaths {
     int layer = 0;              // index into LayerStack::layers
     std::vector<Path> paths;    // in printing order
+    // A bond (bond_z > 0): loops printed before the layer's model at a
+    // height of their own, under columns that start on this layer over an
+    // air gap wider than METHOD's Standing path follows down (a raft's: Cura
+    // leaves 0.3 mm of air under the model's first layer). Bonds come just
+    // before their layer's own entry.
+    double bond_z = 0, bond_height = 0;
+    bool bond() const { return bond_z > 0; }
 };
 
 struct SupportPaths {
     std::vector<LayerPaths> layers;  // only layers with support, by index
 };
+
+// The height the entry is printed at (its bond's, or its layer's).
+inline double printed_z(const LayerPaths& lp, const layers::LayerStack& stack) {
+    return lp.bond() ? lp.bond_z : stack.layers[lp.layer].z;
+}
+
+// A column is bonded to what it stands on where the gap under its first
+// layer exceeds this many nominal layer heights (the validator's path down
+// reaches two); each bond layer is at most this high.
+inline constexpr double kBondGapLayers = 1.5;
 
 // A bridge bar is two layers thick, starting at Bridge::z.
 inline constexpr double kBridgeThickness = 0.4;

@@ -23,8 +23,8 @@ double SynthGcode::e_per_mm() const {
     return area / (std::numbers::pi * fd_ * fd_ / 4);
 }
 
-void SynthGcode::layer(double z) {
-    prev_z_ = z_;
+void SynthGcode::layer(double z, double height) {
+    prev_z_ = height > 0 ? z - height : z_;
     z_ = z;
     body_ += ";LAYER_CHANGE\n;Z:" + fmt("%.3g", z) + "\n;HEIGHT:" + fmt("%.3g", z - prev_z_) + "\n";
     body_ += "G1 Z" + fmt("%.3f", z) + " F7800\n";

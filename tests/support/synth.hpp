@@ -12,7 +12,9 @@ public:
     SynthGcode(double layer_height = 0.2, double width = 0.45, double filament_diameter = 1.75);
 
     // Starts a layer whose top is at z (writes ;LAYER_CHANGE/;Z:/;HEIGHT: and G1 Z).
-    void layer(double z);
+    // Its height is z minus the last layer's z, or `height` when given (a
+    // first layer over a raft's air gap: its beads are that thick).
+    void layer(double z, double height = 0);
     void type(std::string_view prusa_role);  // e.g. "External perimeter", "Bridge infill"
     void width(double w);                    // writes ;WIDTH: and uses it for E
     void travel(double x, double y);         // retracts first when longer than 2 mm

@@ -222,3 +222,71 @@ TEST(SupportPaths, AHoleOutlineOnlyWhereTheLayerBelowHoldsIt) {
     for (int l : {10, 12})
         ASSERT_EQ(at_layer(paths, l)->paths.size(), 1u) << "layer " << l;  // the outline only
 }
+
+// A column on a raft whose top is at z 0.8, its first layer `gap` above:
+// 0.2 mm layers (the print's nominal height) after the gap.
+namespace {
+
+toolpath::SupportPaths on_raft(double gap, plan::Base base = plan::Base::Model) {
+    Settings s;
+    s.layer_height = 0.2;
+    layers::LayerStack st;
+    std::vector<double> zs = {0.3, 0.55, 0.8};
+    for (int k = 0; k < 6; ++k) zs.push_back(0.8 + gap + 0.2 * k);
+    for (std::size_t i = 0; i < zs.size(); ++i) {
+        layers::Layer l;
+        l.z = zs[i];
+        l.height = i ? zs[i] - zs[i - 1] : zs[i];
+        l.below = static_cast<int>(i) - 1;
+        l.on_bed = i == 0;
+        st.layers.push_back(l);
+    }
+    st.bounds = {0, 0, 60, 60};
+    plan::Scaffold sc;
+    plan::Column c = pillar(30, 30, zs.back());
+    c.base = base;
+    c.z0 = base == plan::Base::Bed ? 0 : 0.8;
+    sc.columns = {c};
+    return toolpath::make_paths(sc, st, s);
+}
+
+}  // namespace
+
+// Cura's raft: 0.55 mm from the raft's top to the model's first layer, more
+// than 1.5 layers of 0.2: one bond halfway, z 1.075, 0.275 mm high, its
+// loop the column's first, listed just before that layer's own entry.
+TEST(SupportPaths, AColumnOverAWideGapIsBondedToWhatItStandsOn) {
+    const auto paths = on_raft(0.55);
+    ASSERT_GE(paths.layers.size(), 2u);
+    const auto& bond = paths.layers[0];
+    ASSERT_TRUE(bond.bond());
+    EXPECT_EQ(bond.layer, 3);
+    EXPECT_NEAR(bond.bond_z, 1.075, 1e-9);
+    EXPECT_NEAR(bond.bond_height, 0.275, 1e-9);
+    EXPECT_FALSE(paths.layers[1].bond());
+    EXPECT_EQ(paths.layers[1].layer, 3);
+    ASSERT_EQ(bond.paths.size(), paths.layers[1].paths.size());
+    EXPECT_EQ(bond.paths[0].points.size(), paths.layers[1].paths[0].points.size());
+    EXPECT_DOUBLE_EQ(bond.paths[0].points[0].x, paths.layers[1].paths[0].points[0].x);
+    EXPECT_NEAR(toolpath::printed_z(bond, layers::LayerStack{}), 1.075, 1e-9);
+    for (std::size_t i = 2; i < paths.layers.size(); ++i) EXPECT_FALSE(paths.layers[i].bond());
+}
+
+// A 1.0 mm gap: ceil(1.0 / 0.3) = 4 steps, three bonds 0.25 mm apart.
+TEST(SupportPaths, AWiderGapGetsBondsAtMostOneAndAHalfLayersApart) {
+    const auto paths = on_raft(1.0);
+    ASSERT_GE(paths.layers.size(), 4u);
+    for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(paths.layers[k].bond());
+        EXPECT_NEAR(paths.layers[k].bond_z, 0.8 + 0.25 * (k + 1), 1e-9);
+        EXPECT_NEAR(paths.layers[k].bond_height, 0.25, 1e-9);
+    }
+    EXPECT_FALSE(paths.layers[3].bond());
+}
+
+// 0.3 mm (1.5 layers, PrusaSlicer's raft contact) needs none; nor does a
+// column on the bed.
+TEST(SupportPaths, NoBondWithinOneAndAHalfLayersOrOnTheBed) {
+    for (const auto& lp : on_raft(0.3).layers) EXPECT_FALSE(lp.bond());
+    for (const auto& lp : on_raft(0.55, plan::Base::Bed).layers) EXPECT_FALSE(lp.bond());
+}
