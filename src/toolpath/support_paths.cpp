@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <tuple>
 
 // Boost.Geometry's rescaling trips GCC's maybe-uninitialized analysis.
 #pragma GCC diagnostic push
@@ -268,16 +270,56 @@ void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridge
     }
 }
 
-// A column's loop on its first layer, where a bond goes under it.
+// What each column has printed so far, for its bonds. Columns are pieces
+// stacked on one another (Base::Column on the piece whose top is its
+// bottom); branches may stand on one piece. A piece's loop is bonded when
+// the gap down to the highest loop printed so far by it or the pieces
+// under it (or to what the lowest stands on) is wider than the bond gap.
+class Printed {
+public:
+    explicit Printed(const std::vector<plan::Column>& columns)
+        : columns_(columns), below_(columns.size()), top_(columns.size(), -1.0) {
+        std::map<std::tuple<double, double, double>, std::size_t> tops;
+        for (std::size_t i = 0; i < columns.size(); ++i)
+            tops.emplace(std::tuple{columns[i].x1, columns[i].y1, columns[i].z1}, i);
+        for (std::size_t i = 0; i < columns.size(); ++i) {
+            const plan::Column& c = columns[i];
+            const auto it = c.base == plan::Base::Column ? tops.find({c.x0, c.y0, c.z0}) : tops.end();
+            below_[i] = it != tops.end() && it->second != i ? it->second : i;
+        }
+    }
+
+    // The height piece i's loop at z stands on: its own last loop, else
+    // the nearest piece under it that printed one, else the bottom's base.
+    double beneath(std::size_t i) const {
+        if (top_[i] >= 0) return top_[i];
+        std::size_t r = i;
+        for (std::size_t steps = 0; below_[r] != r && steps < columns_.size(); ++steps) {
+            r = below_[r];
+            if (top_[r] >= 0) return top_[r];
+        }
+        return columns_[r].base == plan::Base::Bed ? 0.0 : columns_[r].z0;
+    }
+
+    void print(std::size_t i, double z) { top_[i] = std::max(top_[i], z); }
+
+private:
+    const std::vector<plan::Column>& columns_;
+    std::vector<std::size_t> below_;  // the piece it stands on, or itself
+    std::vector<double> top_;         // its highest loop printed, -1 for none
+};
+
+// A column's loop on a layer far above the last it was printed on (or
+// what it stands on), where a bond goes under it.
 struct Bonded {
-    double z0 = 0;  // what it stands on
+    double z0 = 0;  // the height it was printed up to, or stands on
     Path path;
     bool single = false;  // a single wall, merged with the loops it crosses
     Ring ring;
 };
 
-// The bond layers under layer `l` (at z) for the loops of columns starting
-// there, by the z each stands on: evenly spaced through the gap, each at
+// The bond layers under layer `l` (at z) for the loops of columns over a
+// gap, by the z each was printed up to: evenly spaced through the gap, each at
 // most `most` high, printed in the order of their heights. Crossing loops
 // are merged as on the layer (they stand on solid support: holes kept).
 template <class Finish>
@@ -333,10 +375,27 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 break;
             }
     std::vector<int> printed_at(stack.layers.size(), -1);  // index in out.layers
+    Printed printed(scaffold.columns);
+    double printed_up_to = 0;  // the highest layer so far
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
         double z = layer.z;
+        // Nothing on a layer printed after a higher one (Cura prints the
+        // model's second layer over a raft 0.02 mm under its first): the
+        // nozzle would print under what it printed there already. What
+        // reaches only up to such a layer is printed on the higher one,
+        // just before it (`z_low`: the lowest printed right after this one
+        // and under it, within a nominal layer).
+        if (z < printed_up_to - kZEps) continue;
+        printed_up_to = z;
+        double z_low = z;
+        for (int k = l + 1; k < static_cast<int>(stack.layers.size()); ++k) {
+            const layers::Layer& after = stack.layers[k];
+            if (after.purge) continue;
+            if (after.z >= z - kZEps || after.z < z - s.layer_height) break;
+            z_low = std::min(z_low, after.z);
+        }
         bool first_layer = layer.on_bed;
         double speed = first_layer ? s.first_layer_speed_mm_s : s.support_speed_mm_s;
         LayerPaths lp;
@@ -351,13 +410,22 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         // Loops of columns starting here over a wide gap, by the z they stand on.
         std::vector<Bonded> bonded;
         const double bond_gap = kBondGapLayers * std::max(s.layer_height, layer.nominal_height);
-        const double z_below = layer.below >= 0 ? stack.layers[layer.below].z : 0.0;
-        for (const plan::Column& c : scaffold.columns) {
-            if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
+        for (std::size_t ci = 0; ci < scaffold.columns.size(); ++ci) {
+            const plan::Column& c = scaffold.columns[ci];
+            if (z_low <= c.z0 + kZEps || z_low > c.z1 + kZEps) {
+                if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
+            }
+            const double zc = std::min(z, c.z1);  // the column's own height here
+            // A gap under this layer's loop wider than the bond gap: the
+            // model's first layer over a raft's air gap, for columns standing
+            // on the raft and for those standing on the bed beside it alike.
+            const double on = printed.beneath(ci), gap = z - on;
+            const bool bond = on > 0 && gap > bond_gap + kZEps && !stack.z_varies;
+            printed.print(ci, z);
             // A column whose base is on the bed starts on the first layer.
             double cx, cy;
-            plan::column_centre_at(c, z, cx, cy);
-            double r = plan::column_radius_at(c, z, s);
+            plan::column_centre_at(c, zc, cx, cy);
+            double r = plan::column_radius_at(c, zc, s);
             if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0) {
                 Square sq{cx, cy, c.raft_size / 2};
                 bool overlaps = std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.overlaps(sq); });
@@ -401,16 +469,14 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // Wide pillars get a second wall so they stay stiff; not those
             // widened for METHOD's Standing rule, sized as single walls
             // (for the same stiffness a wider single wall costs less).
-            const bool bond = c.base != plan::Base::Bed && !stack.z_varies && z_below <= c.z0 + kZEps &&
-                              z - c.z0 > bond_gap + kZEps;
             if (plan::second_wall(c, r, w)) {
-                if (bond) bonded.push_back({c.z0, lp.paths.back(), false, rings.back()});
+                if (bond) bonded.push_back({z - gap, lp.paths.back(), false, rings.back()});
                 Path inner = lp.paths.back();
                 inner.points = loop(cx, cy, r - w * 0.9, w);
-                if (bond) bonded.push_back({c.z0, inner, false, rings.back()});
+                if (bond) bonded.push_back({z - gap, inner, false, rings.back()});
                 lp.paths.push_back(std::move(inner));
             } else {
-                if (bond) bonded.push_back({c.z0, lp.paths.back(), true, rings.back()});
+                if (bond) bonded.push_back({z - gap, lp.paths.back(), true, rings.back()});
                 single_loops.push_back({lp.paths.size() - 1, rings.back()});
             }
         }
@@ -462,3 +528,4 @@ std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, 
 }
 
 }  // namespace scaffold::toolpath
+

@@ -7,6 +7,7 @@
 #include <spdlog/logger.h>
 #include <spdlog/sinks/null_sink.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -24,7 +25,7 @@ namespace {
 // a mushroom: a stem of radius 2.5 and, from 3 mm above the raft, a cap of
 // radius 6. The model's layers say they are 0.2 mm high, the first as
 // well (as a slicer states a layer's own height, not the gap under it).
-std::string on_raft(double gap) {
+std::string on_raft(double gap, double overlap = 0) {
     scaffold::testing::SynthGcode g;
     g.width(0.45);
     for (double z : {0.3, 0.55, 0.8}) {
@@ -34,7 +35,7 @@ std::string on_raft(double gap) {
     }
     const double z0 = 0.8 + gap;
     for (int l = 0; l < 20; ++l) {
-        const double z = z0 + 0.2 * l;
+        const double z = z0 + 0.2 * l - (l > 0 ? overlap : 0.0);
         g.layer(z, 0.2);
         g.type("External perimeter");
         g.filled_disc(100, 105, z > 0.8 + 3.0 + 1e-9 ? 6.0 : 2.5);
@@ -84,6 +85,27 @@ TEST(Raft, ColumnsOverAnAirGapAreBondedToTheRaft) {
     EXPECT_LT(out.find(bond), out.find(";TYPE:External perimeter"));
     const check::CheckReport r = checked(out, in);
     EXPECT_EQ(r.standing.added.floating, 0) << check::report_text(r);
+    EXPECT_TRUE(r.ok()) << check::report_text(r);
+}
+
+// Cura 4.13 prints the model's second layer over the raft 0.02 mm under
+// its first (1.30, then 1.28): no support is printed below what was printed
+// before it, and every island still stands.
+TEST(Raft, NothingIsPrintedUnderALayerPrintedBefore) {
+    const std::string in = on_raft(0.5, 0.22);
+    const std::string out = scaffolded(in);
+    const std::string head = "; scaffold: support for the layer at Z";
+    double last = 0;
+    int blocks = 0;
+    for (std::size_t at = out.find(head); at != std::string::npos; at = out.find(head, at + 1)) {
+        const double z = std::stod(out.substr(at + head.size(), 8));
+        EXPECT_GE(z, last) << "a block at z " << z << " after one at " << last;
+        last = std::max(last, z);
+        ++blocks;
+    }
+    EXPECT_GT(blocks, 5);
+    EXPECT_FALSE(block_at(out, "1.05").empty()) << "no bond halfway between 0.8 and 1.3";
+    const check::CheckReport r = checked(out, in);
     EXPECT_TRUE(r.ok()) << check::report_text(r);
 }
 

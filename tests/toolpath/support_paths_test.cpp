@@ -284,9 +284,65 @@ TEST(SupportPaths, AWiderGapGetsBondsAtMostOneAndAHalfLayersApart) {
     EXPECT_FALSE(paths.layers[3].bond());
 }
 
-// 0.3 mm (1.5 layers, PrusaSlicer's raft contact) needs none; nor does a
-// column on the bed.
-TEST(SupportPaths, NoBondWithinOneAndAHalfLayersOrOnTheBed) {
+// 0.3 mm (1.5 layers, PrusaSlicer's raft contact) needs none.
+TEST(SupportPaths, NoBondWithinOneAndAHalfLayers) {
     for (const auto& lp : on_raft(0.3).layers) EXPECT_FALSE(lp.bond());
-    for (const auto& lp : on_raft(0.55, plan::Base::Bed).layers) EXPECT_FALSE(lp.bond());
+}
+
+// A column on the bed beside the raft is printed on the raft's layers and
+// crosses the same gap to the model's first layer: bonded from its loop at
+// 0.8. Never on its own first layer, 0.3 above the bed.
+TEST(SupportPaths, AColumnBesideTheRaftIsBondedAcrossTheSameGap) {
+    const auto paths = on_raft(0.55, plan::Base::Bed);
+    int bonds = 0;
+    for (const auto& lp : paths.layers)
+        if (lp.bond()) {
+            ++bonds;
+            EXPECT_EQ(lp.layer, 3);
+            EXPECT_NEAR(lp.bond_z, 1.075, 1e-9);
+        }
+    EXPECT_EQ(bonds, 1);
+    ASSERT_FALSE(paths.layers.empty());
+    EXPECT_FALSE(paths.layers.front().bond());
+    EXPECT_EQ(paths.layers.front().layer, 0);
+}
+
+// Cura prints the model's second layer over a raft a little lower than its
+// first (1.13 after 1.15): nothing is printed on it, under what was printed
+// at 1.15. A column reaching only up to 1.13 (a tip under the model's
+// third layer) is printed on 1.15 instead, bonded as the other is.
+TEST(SupportPaths, NothingOnALayerPrintedAfterAHigherOne) {
+    Settings s;
+    s.layer_height = 0.2;
+    layers::LayerStack st;
+    const std::vector<double> zs = {0.3, 0.45, 0.55, 0.65, 1.15, 1.13, 1.33, 1.53};
+    for (std::size_t i = 0; i < zs.size(); ++i) {
+        layers::Layer l;
+        l.z = zs[i];
+        l.height = i ? zs[i] - zs[i - 1] : zs[i];
+        l.below = i == 5 ? 3 : static_cast<int>(i) - 1;  // 1.13 lies on the raft's 0.65
+        l.on_bed = i == 0;
+        st.layers.push_back(l);
+    }
+    st.bounds = {0, 0, 60, 60};
+    plan::Scaffold sc;
+    plan::Column tall = pillar(30, 30, 1.53), tip = pillar(40, 30, 1.13);
+    tall.base = tip.base = plan::Base::Model;
+    tall.z0 = tip.z0 = 0.65;
+    sc.columns = {tall, tip};
+    int bonds = 0;
+    double last_z = 0;
+    for (const auto& lp : toolpath::make_paths(sc, st, s).layers) {
+        EXPECT_NE(lp.layer, 5);
+        const double z = toolpath::printed_z(lp, st);
+        EXPECT_GE(z, last_z) << "printed under what came before";
+        last_z = z;
+        if (lp.layer == 4) EXPECT_EQ(lp.paths.size(), 2u) << (lp.bond() ? "bond" : "layer");
+        if (lp.bond()) {
+            ++bonds;
+            EXPECT_EQ(lp.layer, 4);
+            EXPECT_NEAR(lp.bond_z, 0.9, 1e-9);
+        }
+    }
+    EXPECT_EQ(bonds, 1);
 }
