@@ -132,10 +132,16 @@ void smooth_caps(std::vector<Step>& path, const Column& proto, const layers::Lay
     const double none = std::numeric_limits<double>::infinity();
     std::vector<double> cap(path.size());
     for (std::size_t i = 0; i < path.size(); ++i) cap[i] = path[i].cap > 0 ? path[i].cap : none;
-    const double limit = loop_shift_limit(stack.layers[top_layer].height, s);
+    // Each step as far as its own height lets a loop step out: thinner
+    // layers than the top's (Cura's second layer over a raft, 0.08 mm above
+    // its first at 0.3 mm layers) hold less.
+    const double h_top = stack.layers[top_layer].height;
     std::vector<double> d(path.size(), 0.0);  // d[i]: between path[i - 1] and path[i]
-    for (std::size_t i = 1; i < path.size(); ++i)
+    for (std::size_t i = 1; i < path.size(); ++i) {
+        const double dz = path[i - 1].z - path[i].z;
+        const double limit = loop_shift_limit(dz < h_top - 1e-6 ? dz : h_top, s);
         d[i] = std::max(kCapChange * limit, limit - std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y));
+    }
     for (std::size_t i = 1; i < cap.size(); ++i) cap[i] = std::min(cap[i], cap[i - 1] + d[i]);
     for (std::size_t i = cap.size() - 1; i > 0; --i) cap[i - 1] = std::min(cap[i - 1], cap[i] + d[i]);
     for (std::size_t i = 0; i < path.size(); ++i) {

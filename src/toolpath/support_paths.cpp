@@ -313,43 +313,81 @@ private:
 // what it stands on), where a bond goes under it.
 struct Bonded {
     double z0 = 0;  // the height it was printed up to, or stands on
+    double z1 = 0;  // its loop's height
     Path path;
     bool single = false;  // a single wall, merged with the loops it crosses
     Ring ring;
 };
 
-// The bond layers under layer `l` (at z) for the loops of columns over a
-// gap, by the z each was printed up to: evenly spaced through the gap, each at
-// most `most` high, printed in the order of their heights. Crossing loops
-// are merged as on the layer (they stand on solid support: holes kept).
+// The loops to bond under the lowest of `heights` (none given: none):
+// columns reaching one of them over a gap wider than `gap` and at most
+// `most` from what they were printed up to (Printed::beneath). Each is
+// noted printed there, so the pieces on it see no gap.
+std::vector<Bonded> bonds_under(const std::vector<plan::Column>& columns, const std::vector<std::size_t>& by_base,
+                                const std::vector<double>& heights, double gap, double most, const Settings& s,
+                                Printed& printed) {
+    std::vector<Bonded> out;
+    if (heights.empty()) return out;
+    const double w = s.support_width;
+    std::vector<Ring> rings;
+    for (std::size_t ci : by_base) {
+        const plan::Column& c = columns[ci];
+        double z = 1e300;  // the lowest of the heights it reaches
+        for (double h : heights)
+            if (h > c.z0 + kZEps && h <= c.z1 + kZEps) z = std::min(z, h);
+        if (z == 1e300) continue;
+        const double on = printed.beneath(ci);
+        if (!(on > 0) || z - on <= gap + kZEps || z - on > most + kZEps) continue;
+        printed.print(ci, z);
+        double cx, cy;
+        plan::column_centre_at(c, z, cx, cy);
+        const double r = plan::column_radius_at(c, z, s), rc = plan::loop_shape(r, w).centre_radius;
+        if (std::any_of(rings.begin(), rings.end(),
+                        [&](const Ring& o) { return plan::loops_apart(o.x, o.y, o.rc, cx, cy, rc) <= kRetrace * w; }))
+            continue;
+        rings.push_back({cx, cy, rc});
+        Path p;
+        p.kind = c.x0 != c.x1 || c.y0 != c.y1 ? PathKind::Connector : PathKind::Pillar;
+        p.width = w;
+        p.speed_mm_s = s.support_speed_mm_s;
+        p.points = loop(cx, cy, r, w);
+        const bool two = plan::second_wall(c, r, w);
+        if (two) {
+            Path inner = p;
+            inner.points = loop(cx, cy, r - w * 0.9, w);
+            out.push_back({on, z, std::move(inner), false, rings.back()});
+        }
+        out.push_back({on, z, std::move(p), !two, rings.back()});
+    }
+    return out;
+}
+
+// The bond layers under layer `l`: one halfway through each gap (from
+// what the loops were printed up to, to their height; the gap is at most
+// kBondMostLayers, so each half at most kBondGapLayers), in the order of
+// their heights. Crossing loops are merged as on the layer (they stand on
+// solid support: holes kept).
 template <class Finish>
-void add_bonds(std::vector<Bonded>& bonded, int l, double z, double most, const Finish& finish,
-               std::vector<LayerPaths>& out) {
-    std::stable_sort(bonded.begin(), bonded.end(), [](const Bonded& a, const Bonded& b) { return a.z0 < b.z0; });
-    std::vector<LayerPaths> bonds;
+void add_bonds(std::vector<Bonded>& bonded, int l, const Finish& finish, std::vector<LayerPaths>& out) {
+    auto mid = [](const Bonded& b) { return (b.z0 + b.z1) / 2; };
+    std::stable_sort(bonded.begin(), bonded.end(), [&](const Bonded& a, const Bonded& b) { return mid(a) < mid(b); });
     for (std::size_t i = 0; i < bonded.size();) {
         std::size_t j = i;
-        while (j < bonded.size() && bonded[j].z0 <= bonded[i].z0 + kZEps) ++j;
-        const double gap = z - bonded[i].z0;
-        const int n = std::max(1, static_cast<int>(std::ceil(gap / most - 1e-9)) - 1);
-        for (int k = 1; k <= n; ++k) {
-            LayerPaths b;
-            b.layer = l;
-            b.bond_height = gap / (n + 1);
-            b.bond_z = bonded[i].z0 + k * b.bond_height;
-            std::vector<std::pair<std::size_t, Ring>> singles;
-            for (std::size_t m = i; m < j; ++m) {
-                if (bonded[m].single) singles.push_back({b.paths.size(), bonded[m].ring});
-                b.paths.push_back(bonded[m].path);
-            }
-            merge_crossing_loops(b.paths, singles, true, nullptr, 0);
-            finish(b);
-            bonds.push_back(std::move(b));
+        while (j < bonded.size() && mid(bonded[j]) <= mid(bonded[i]) + kZEps) ++j;
+        LayerPaths b;
+        b.layer = l;
+        b.bond_height = (bonded[i].z1 - bonded[i].z0) / 2;
+        b.bond_z = mid(bonded[i]);
+        std::vector<std::pair<std::size_t, Ring>> singles;
+        for (std::size_t m = i; m < j; ++m) {
+            if (bonded[m].single) singles.push_back({b.paths.size(), bonded[m].ring});
+            b.paths.push_back(bonded[m].path);
         }
+        merge_crossing_loops(b.paths, singles, true, nullptr, 0);
+        finish(b);
+        out.push_back(std::move(b));
         i = j;
     }
-    std::stable_sort(bonds.begin(), bonds.end(), [](const LayerPaths& a, const LayerPaths& b) { return a.bond_z < b.bond_z; });
-    for (LayerPaths& b : bonds) out.push_back(std::move(b));
 }
 
 }  // namespace
@@ -376,25 +414,34 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             }
     std::vector<int> printed_at(stack.layers.size(), -1);  // index in out.layers
     Printed printed(scaffold.columns);
+    // Columns by their bottoms, lowest first: a piece's bond is decided
+    // before those of the pieces standing on it.
+    std::vector<std::size_t> by_base(scaffold.columns.size());
+    for (std::size_t i = 0; i < by_base.size(); ++i) by_base[i] = i;
+    std::stable_sort(by_base.begin(), by_base.end(),
+                     [&](std::size_t a, std::size_t b) { return scaffold.columns[a].z0 < scaffold.columns[b].z0; });
     double printed_up_to = 0;  // the highest layer so far
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
         double z = layer.z;
-        // Nothing on a layer printed after a higher one (Cura prints the
-        // model's second layer over a raft 0.02 mm under its first): the
-        // nozzle would print under what it printed there already. What
-        // reaches only up to such a layer is printed on the higher one,
-        // just before it (`z_low`: the lowest printed right after this one
-        // and under it, within a nominal layer).
-        if (z < printed_up_to - kZEps) continue;
-        printed_up_to = z;
-        double z_low = z;
-        for (int k = l + 1; k < static_cast<int>(stack.layers.size()); ++k) {
-            const layers::Layer& after = stack.layers[k];
-            if (after.purge) continue;
-            if (after.z >= z - kZEps || after.z < z - s.layer_height) break;
-            z_low = std::min(z_low, after.z);
+        // Cura prints the model's second layer over a raft a little under
+        // its first (0.02 mm at 0.2 mm layers): such a layer gets its loops
+        // as any other, but bonds go in only before the first of the group,
+        // under the lowest of `heights` (the layer's own and those printed
+        // right after it and under it, within two nominal layers), never
+        // under what was printed already.
+        const bool lower = z < printed_up_to - kZEps;
+        printed_up_to = std::max(printed_up_to, z);
+        std::vector<double> heights;
+        if (!lower) {
+            heights.push_back(z);
+            for (int k = l + 1; k < static_cast<int>(stack.layers.size()); ++k) {
+                const layers::Layer& after = stack.layers[k];
+                if (after.purge) continue;
+                if (after.z >= z - kZEps || after.z < z - 2 * s.layer_height) break;
+                heights.push_back(after.z);
+            }
         }
         bool first_layer = layer.on_bed;
         double speed = first_layer ? s.first_layer_speed_mm_s : s.support_speed_mm_s;
@@ -407,25 +454,19 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         std::vector<Square> rafts;
         std::vector<Ring> rings;
         std::vector<std::pair<std::size_t, Ring>> single_loops;  // path index, ring
-        // Loops of columns starting here over a wide gap, by the z they stand on.
-        std::vector<Bonded> bonded;
-        const double bond_gap = kBondGapLayers * std::max(s.layer_height, layer.nominal_height);
+        const double h_nom = std::max(s.layer_height, layer.nominal_height);
+        std::vector<Bonded> bonded =
+            stack.z_varies ? std::vector<Bonded>{}
+                           : bonds_under(scaffold.columns, by_base, heights, kBondGapLayers * h_nom,
+                                         kBondMostLayers * h_nom, s, printed);
         for (std::size_t ci = 0; ci < scaffold.columns.size(); ++ci) {
             const plan::Column& c = scaffold.columns[ci];
-            if (z_low <= c.z0 + kZEps || z_low > c.z1 + kZEps) {
-                if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
-            }
-            const double zc = std::min(z, c.z1);  // the column's own height here
-            // A gap under this layer's loop wider than the bond gap: the
-            // model's first layer over a raft's air gap, for columns standing
-            // on the raft and for those standing on the bed beside it alike.
-            const double on = printed.beneath(ci), gap = z - on;
-            const bool bond = on > 0 && gap > bond_gap + kZEps && !stack.z_varies;
+            if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             printed.print(ci, z);
             // A column whose base is on the bed starts on the first layer.
             double cx, cy;
-            plan::column_centre_at(c, zc, cx, cy);
-            double r = plan::column_radius_at(c, zc, s);
+            plan::column_centre_at(c, z, cx, cy);
+            double r = plan::column_radius_at(c, z, s);
             if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0) {
                 Square sq{cx, cy, c.raft_size / 2};
                 bool overlaps = std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.overlaps(sq); });
@@ -470,13 +511,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // widened for METHOD's Standing rule, sized as single walls
             // (for the same stiffness a wider single wall costs less).
             if (plan::second_wall(c, r, w)) {
-                if (bond) bonded.push_back({z - gap, lp.paths.back(), false, rings.back()});
                 Path inner = lp.paths.back();
                 inner.points = loop(cx, cy, r - w * 0.9, w);
-                if (bond) bonded.push_back({z - gap, inner, false, rings.back()});
                 lp.paths.push_back(std::move(inner));
             } else {
-                if (bond) bonded.push_back({z - gap, lp.paths.back(), true, rings.back()});
                 single_loops.push_back({lp.paths.size() - 1, rings.back()});
             }
         }
@@ -497,7 +535,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             }
         }
         if (next[l] >= 0) add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s);
-        if (lp.paths.empty()) continue;
+        if (lp.paths.empty() && bonded.empty()) continue;
         auto finish = [&](LayerPaths& e) {
             order_paths(e.paths);
             if (clear)
@@ -505,7 +543,8 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                     e.paths[i].retract =
                         !clear(l, e.paths[i - 1].points.back(), e.paths[i].points.front(), s.support_width);
         };
-        add_bonds(bonded, l, z, bond_gap, finish, out.layers);
+        add_bonds(bonded, l, finish, out.layers);
+        if (lp.paths.empty()) continue;
         finish(lp);
         printed_at[l] = static_cast<int>(out.layers.size());
         out.layers.push_back(std::move(lp));

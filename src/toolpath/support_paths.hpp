@@ -52,8 +52,15 @@ inline double printed_z(const LayerPaths& lp, const layers::LayerStack& stack) {
 
 // A column is bonded to what it stands on where the gap under its first
 // layer exceeds this many nominal layer heights (the validator's path down
-// reaches two); each bond layer is at most this high.
+// reaches two); the bond is printed halfway up the gap.
 inline constexpr double kBondGapLayers = 1.5;
+// ...and only where the gap is at most this many: a bond becomes the layer
+// right under the model's, which then rests on the raft only through
+// support within three nominal layers (METHOD's "layer L-1"). Over a wider
+// gap (Cura's raft under 0.1 mm layers: 0.5 mm) the model's first layer
+// lies on the raft only as the nearest layer under it, and a bond there
+// would leave it held by nothing.
+inline constexpr double kBondMostLayers = 3.0;
 
 // A bridge bar is two layers thick, starting at Bridge::z.
 inline constexpr double kBridgeThickness = 0.4;

@@ -382,3 +382,52 @@ TEST(Obstacles, AWidenedColumnNarrowsItsFootOnASmallTop) {
     EXPECT_LT(bottom, foot.radius + foot.taper * (foot.hold_z - 2.2) - 0.05);
     EXPECT_GT(radius_at(4.0), bottom + 0.05);
 }
+
+// The same post, with layers as Cura prints them over a raft at 0.3 mm:
+// the first above the post 0.3 thick, the second only 0.08 (Cura lowers
+// every layer after the first by 0.22), then 0.3 again. The loops widen
+// from the narrowed bottom loop only as far as each layer's own height
+// lets a loop step out: 0.271 mm over the 0.08 mm layer, not the 0.52 a
+// 0.3 mm layer allows.
+TEST(Obstacles, ANarrowedFootWidensOnlyAsAThinLayerHolds) {
+    Settings s;
+    s.layer_height = 0.3;
+    layers::LayerStack st;
+    std::vector<double> zs;
+    for (double z = 0.2; z <= 2.0 + 1e-9; z += 0.2) zs.push_back(z);
+    zs.push_back(2.3);
+    for (double z = 2.38; z <= 30.0 + 1e-9; z += 0.3) zs.push_back(z);
+    for (std::size_t i = 0; i < zs.size(); ++i) {
+        layers::Layer l;
+        l.z = zs[i];
+        l.height = i ? zs[i] - zs[i - 1] : zs[i];
+        l.below = static_cast<int>(i) - 1;
+        l.on_bed = i == 0;
+        if (i > 0) l.beneath = {static_cast<int>(i) - 1};
+        if (l.z <= 2.0 + 1e-9)
+            for (double r : {1.0, 0.6, 0.2})
+                for (int k = 0; k < 48; ++k) {
+                    const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
+                    test::bead(l, 100 + r * std::cos(a), 100 + r * std::sin(a), 100 + r * std::cos(b),
+                               100 + r * std::sin(b), gcode::Role::ExternalPerimeter);
+                }
+        if (i + 1 == zs.size())
+            for (double y = 97; y <= 103 + 1e-9; y += 0.4) test::bead(l, 97, y, 103, y);
+        st.layers.push_back(std::move(l));
+    }
+    st.bounds = {97, 97, 103, 103};
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(100, 100, static_cast<int>(zs.size()) - 1, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain && !chain->empty());
+    EXPECT_EQ(chain->front().base, plan::Base::Model);
+    auto radius_at = [&](double z) {
+        for (const plan::Column& c : *chain)
+            if (z > c.z0 + 1e-6 && z <= c.z1 + 1e-6) return plan::column_radius_at(c, z, s);
+        return -1.0;
+    };
+    const double bottom = radius_at(2.3), second = radius_at(2.38);
+    ASSERT_GT(bottom, 0);
+    EXPECT_GT(second, bottom);  // it does widen
+    EXPECT_LE(second - bottom, plan::loop_shift_limit(0.08, s) + 1e-9);
+    EXPECT_GE(radius_at(2.68), second - 1e-9);
+}

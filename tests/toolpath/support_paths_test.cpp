@@ -272,16 +272,14 @@ TEST(SupportPaths, AColumnOverAWideGapIsBondedToWhatItStandsOn) {
     for (std::size_t i = 2; i < paths.layers.size(); ++i) EXPECT_FALSE(paths.layers[i].bond());
 }
 
-// A 1.0 mm gap: ceil(1.0 / 0.3) = 4 steps, three bonds 0.25 mm apart.
-TEST(SupportPaths, AWiderGapGetsBondsAtMostOneAndAHalfLayersApart) {
-    const auto paths = on_raft(1.0);
-    ASSERT_GE(paths.layers.size(), 4u);
-    for (int k = 0; k < 3; ++k) {
-        ASSERT_TRUE(paths.layers[k].bond());
-        EXPECT_NEAR(paths.layers[k].bond_z, 0.8 + 0.25 * (k + 1), 1e-9);
-        EXPECT_NEAR(paths.layers[k].bond_height, 0.25, 1e-9);
-    }
-    EXPECT_FALSE(paths.layers[3].bond());
+// A 0.7 mm gap, over three layers of 0.2: no bond. A bond would become the
+// layer right under the model's first, which rests on the raft only as the
+// layer right under it (support counts as "layer L-1" within three layers).
+TEST(SupportPaths, NoBondOverAGapOfMoreThanThreeLayers) {
+    for (const auto& lp : on_raft(0.7).layers) EXPECT_FALSE(lp.bond());
+    int bonds = 0;
+    for (const auto& lp : on_raft(0.6).layers) bonds += lp.bond();
+    EXPECT_EQ(bonds, 1);
 }
 
 // 0.3 mm (1.5 layers, PrusaSlicer's raft contact) needs none.
@@ -308,10 +306,11 @@ TEST(SupportPaths, AColumnBesideTheRaftIsBondedAcrossTheSameGap) {
 }
 
 // Cura prints the model's second layer over a raft a little lower than its
-// first (1.13 after 1.15): nothing is printed on it, under what was printed
-// at 1.15. A column reaching only up to 1.13 (a tip under the model's
-// third layer) is printed on 1.15 instead, bonded as the other is.
-TEST(SupportPaths, NothingOnALayerPrintedAfterAHigherOne) {
+// first (1.13 after 1.15). The bond goes under the lower, halfway from the
+// raft's 0.65 to 1.13, before the first, for both columns: one reaching
+// 1.53, a tip reaching only 1.13. Each still prints its loop on the layers
+// it reaches, as the model does.
+TEST(SupportPaths, ABondGoesUnderTheLowerOfTwoLayersPrintedOutOfOrder) {
     Settings s;
     s.layer_height = 0.2;
     layers::LayerStack st;
@@ -330,19 +329,17 @@ TEST(SupportPaths, NothingOnALayerPrintedAfterAHigherOne) {
     tall.base = tip.base = plan::Base::Model;
     tall.z0 = tip.z0 = 0.65;
     sc.columns = {tall, tip};
-    int bonds = 0;
-    double last_z = 0;
-    for (const auto& lp : toolpath::make_paths(sc, st, s).layers) {
-        EXPECT_NE(lp.layer, 5);
-        const double z = toolpath::printed_z(lp, st);
-        EXPECT_GE(z, last_z) << "printed under what came before";
-        last_z = z;
-        if (lp.layer == 4) EXPECT_EQ(lp.paths.size(), 2u) << (lp.bond() ? "bond" : "layer");
-        if (lp.bond()) {
-            ++bonds;
-            EXPECT_EQ(lp.layer, 4);
-            EXPECT_NEAR(lp.bond_z, 0.9, 1e-9);
-        }
-    }
-    EXPECT_EQ(bonds, 1);
+    const auto paths = toolpath::make_paths(sc, st, s);
+    ASSERT_EQ(paths.layers.size(), 5u);  // the bond, 1.15, 1.13, 1.33, 1.53
+    const auto& bond = paths.layers[0];
+    ASSERT_TRUE(bond.bond());
+    EXPECT_EQ(bond.layer, 4);
+    EXPECT_NEAR(bond.bond_z, 0.89, 1e-9);
+    EXPECT_NEAR(bond.bond_height, 0.24, 1e-9);
+    EXPECT_EQ(bond.paths.size(), 2u);
+    EXPECT_EQ(paths.layers[1].layer, 4);
+    EXPECT_EQ(paths.layers[1].paths.size(), 1u);  // the tip does not reach 1.15
+    EXPECT_EQ(paths.layers[2].layer, 5);
+    EXPECT_EQ(paths.layers[2].paths.size(), 2u);
+    for (std::size_t i = 1; i < paths.layers.size(); ++i) EXPECT_FALSE(paths.layers[i].bond());
 }
