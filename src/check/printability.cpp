@@ -154,6 +154,10 @@ LayerIssue issue_of(const layers::BitGrid& g, int layer, double z) {
 
 
 enum class ProblemKind { Width, EJump, OutsideBed };
+
+// Around the slicer's own extrusions where the file states no bed: support
+// may stand beside the model's edge (a 7 mm raft square, a bar).
+constexpr double kUnstatedBedMargin = 10.0;
 struct Problem {
     std::uint32_t line;
     ProblemKind kind;
@@ -387,7 +391,36 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     // the first layer) and, with --original, what the original already did
     // are reported apart: only what the edit added or broke fails.
     const std::uint32_t first_layer_line = first_layer_start(stack);
-    const Extrusion ex = extrusion_problems(out, settings, move_heights(out, stack), is_support_move);
+    // A bed the file does not state is a guess (250 x 210 mm from the
+    // origin); the slicer's own extrusions lie on the real one (a delta's
+    // bed is centred on the origin), so the guess grows to hold them and
+    // kUnstatedBedMargin around them (support beside the model's edge).
+    Settings judged = settings;
+    if (!settings.bed_stated) {
+        auto hold = [&](const gcode::Move& m) {
+            judged.bed_min_x = std::min({judged.bed_min_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
+            judged.bed_min_y = std::min({judged.bed_min_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
+            judged.bed_max_x = std::max({judged.bed_max_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
+            judged.bed_max_y = std::max({judged.bed_max_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
+        };
+        bool any = false;
+        for (const gcode::Move& m : original ? original->moves : out.moves)
+            if (m.kind == gcode::MoveKind::Extrude && (original || inserted.empty() || !inserted[m.line])) {
+                if (!any) {
+                    judged.bed_min_x = judged.bed_max_x = m.x0;
+                    judged.bed_min_y = judged.bed_max_y = m.y0;
+                    any = true;
+                }
+                hold(m);
+            }
+        if (any) {
+            judged.bed_min_x = std::min(judged.bed_min_x - kUnstatedBedMargin, settings.bed_min_x);
+            judged.bed_min_y = std::min(judged.bed_min_y - kUnstatedBedMargin, settings.bed_min_y);
+            judged.bed_max_x = std::max(judged.bed_max_x + kUnstatedBedMargin, settings.bed_max_x);
+            judged.bed_max_y = std::max(judged.bed_max_y + kUnstatedBedMargin, settings.bed_max_y);
+        }
+    }
+    const Extrusion ex = extrusion_problems(out, judged, move_heights(out, stack), is_support_move);
     r.support_filament_mm = ex.support_mm;
     r.model_filament_mm = ex.model_mm;
     // (original line, kind) the original had itself; its start code needs no
@@ -395,7 +428,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     std::set<std::pair<std::uint32_t, int>> own;
     if (original)
         for (const Problem& q :
-             extrusion_problems(*original, settings, move_heights(*original, layers::build_layers(*original, settings)),
+             extrusion_problems(*original, judged, move_heights(*original, layers::build_layers(*original, settings)),
                                 [](const gcode::Move& m) { return gcode::is_support(m.role); })
                  .problems)
             own.insert({q.line, static_cast<int>(q.kind)});

@@ -104,6 +104,7 @@ void bed_from_shape(const std::string& shape, Settings& s) {
     }
     if (maxx > minx && maxy > miny) {
         s.bed_min_x = minx; s.bed_min_y = miny; s.bed_max_x = maxx; s.bed_max_y = maxy;
+        s.bed_stated = true;
     }
 }
 
@@ -226,7 +227,14 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
     if (const std::string* shape = l.text({"bed_shape", "printable_area"})) bed_from_shape(*shape, s);
     double w = 0, d = 0;
     if (l.number({"machine_width"}, w) && l.number({"machine_depth"}, d)) {
-        s.bed_min_x = 0; s.bed_min_y = 0; s.bed_max_x = w; s.bed_max_y = d;
+        // Cura's delta and centred beds put the origin in the middle.
+        bool centred = false;
+        l.flag({"machine_center_is_zero"}, centred);
+        s.bed_min_x = centred ? -w / 2 : 0;
+        s.bed_min_y = centred ? -d / 2 : 0;
+        s.bed_max_x = s.bed_min_x + w;
+        s.bed_max_y = s.bed_min_y + d;
+        s.bed_stated = true;
     }
     l.number({"temperature", "nozzle_temperature", "material_print_temperature"}, s.temperature);
     l.number({"first_layer_temperature", "nozzle_temperature_initial_layer", "material_print_temperature_layer_0"},

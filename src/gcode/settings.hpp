@@ -33,6 +33,7 @@ struct Settings {
     double first_layer_speed_mm_s = 30;
     double bridge_fan_percent = 100;
     double bed_min_x = 0, bed_min_y = 0, bed_max_x = 250, bed_max_y = 210;
+    bool bed_stated = false;          // the file gives its bed (else the box above is a guess)
     double temperature = 210, first_layer_temperature = 215, bed_temperature = 60;
     double slicer_max_bridge = 10;    // bridge limit for slicer-marked bridges
     bool spiral_vase = false;

@@ -477,3 +477,36 @@ TEST(Check, IntroLineBeforeTheFirstBeforeLayerChangeIsStartCode) {
     EXPECT_EQ(r.e_jumps, 0);
 }
 
+
+// A file that states no bed (CuraEngine's command line writes none) is
+// judged on a guess: 250 x 210 from the origin, grown to hold the slicer's
+// own extrusions and 10 mm around them. A delta's cube around the origin
+// with a 2 mm support ring beside it passes; the same ring 30 mm off, at
+// x -55 (under the guess and past the margin), is outside the bed.
+TEST(Check, AnUnstatedBedHoldsTheSlicersOwnExtrusions) {
+    auto unstated = [](double ring_x) {
+        SynthGcode g;
+        for (int l = 1; l <= 3; ++l) {
+            g.layer(0.2 * l);
+            g.type("External perimeter");
+            g.filled_rect(-20, -5, -10, 5);
+            if (ring_x != 0) {
+                g.type("Support material");
+                g.circle(ring_x, 0, 0.775, 24);
+            }
+        }
+        std::string text = g.str();
+        const std::size_t at = text.find("; bed_shape = ");
+        text.erase(at, text.find('\n', at) + 1 - at);
+        return text;
+    };
+    const std::string in = unstated(0);
+    for (double x : {-24.0, -55.0}) {
+        const std::string out_text = unstated(x);
+        const auto out = gcode::parse(out_text, "out.gcode");
+        const auto orig = gcode::parse(in, "in.gcode");
+        const check::CheckReport r = check::check(out, &orig, {});
+        if (x == -24.0) EXPECT_EQ(r.outside_bed, 0) << check::report_text(r);
+        else EXPECT_GT(r.outside_bed, 0) << check::report_text(r);
+    }
+}

@@ -114,3 +114,27 @@ TEST(Config, BadNumbersAndRefusedModesAreReported) {
     Settings seq = build_settings(p, {}, {{"complete_objects", "1"}});
     EXPECT_TRUE(seq.sequential_printing);
 }
+
+// Cura's delta and centred beds: machine_center_is_zero puts the origin in
+// the middle of machine_width x machine_depth. A file that states no bed
+// at all leaves the guess, marked as one.
+TEST(Config, CentredCuraBedAndUnstatedBed) {
+    const std::string body = "G28\nG1 Z0.2 F3000\nG1 X0 Y0 F3000\nG1 X10 Y0 E1 F1200\n";
+    const auto centred = gcode::parse(";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.13.1\n" + body +
+                                          "; machine_width = 250\n; machine_depth = 200\n; machine_center_is_zero = True\n",
+                                      "centred.gcode");
+    Settings s = build_settings(centred, {}, {});
+    EXPECT_TRUE(s.bed_stated);
+    EXPECT_DOUBLE_EQ(s.bed_min_x, -125);
+    EXPECT_DOUBLE_EQ(s.bed_max_x, 125);
+    EXPECT_DOUBLE_EQ(s.bed_min_y, -100);
+    EXPECT_DOUBLE_EQ(s.bed_max_y, 100);
+    const auto plain = gcode::parse(";FLAVOR:Marlin\n;Generated with Cura_SteamEngine 4.13.1\n" + body +
+                                        "; machine_width = 250\n; machine_depth = 200\n",
+                                    "plain.gcode");
+    s = build_settings(plain, {}, {});
+    EXPECT_DOUBLE_EQ(s.bed_min_x, 0);
+    EXPECT_DOUBLE_EQ(s.bed_max_x, 250);
+    const auto none = gcode::parse(body, "none.gcode");
+    EXPECT_FALSE(build_settings(none, {}, {}).bed_stated);
+}
