@@ -392,30 +392,24 @@ TEST(Obstacles, AWidenedColumnNarrowsItsFootOnASmallTop) {
 TEST(Obstacles, ANarrowedFootWidensOnlyAsAThinLayerHolds) {
     Settings s;
     s.layer_height = 0.3;
-    layers::LayerStack st;
     std::vector<double> zs;
     for (double z = 0.2; z <= 2.0 + 1e-9; z += 0.2) zs.push_back(z);
     zs.push_back(2.3);
     for (double z = 2.38; z <= 30.0 + 1e-9; z += 0.3) zs.push_back(z);
-    for (std::size_t i = 0; i < zs.size(); ++i) {
-        layers::Layer l;
-        l.z = zs[i];
-        l.height = i ? zs[i] - zs[i - 1] : zs[i];
-        l.below = static_cast<int>(i) - 1;
-        l.on_bed = i == 0;
-        if (i > 0) l.beneath = {static_cast<int>(i) - 1};
-        if (l.z <= 2.0 + 1e-9)
-            for (double r : {1.0, 0.6, 0.2})
-                for (int k = 0; k < 48; ++k) {
-                    const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
-                    test::bead(l, 100 + r * std::cos(a), 100 + r * std::sin(a), 100 + r * std::cos(b),
-                               100 + r * std::sin(b), gcode::Role::ExternalPerimeter);
-                }
-        if (i + 1 == zs.size())
-            for (double y = 97; y <= 103 + 1e-9; y += 0.4) test::bead(l, 97, y, 103, y);
-        st.layers.push_back(std::move(l));
-    }
-    st.bounds = {97, 97, 103, 103};
+    const layers::LayerStack st = test::stack_at(
+        zs,
+        [&](int i, layers::Layer& l) {
+            if (l.z <= 2.0 + 1e-9)
+                for (double r : {1.0, 0.6, 0.2})
+                    for (int k = 0; k < 48; ++k) {
+                        const double a = k * std::numbers::pi / 24, b = (k + 1) * std::numbers::pi / 24;
+                        test::bead(l, 100 + r * std::cos(a), 100 + r * std::sin(a), 100 + r * std::cos(b),
+                                   100 + r * std::sin(b), gcode::Role::ExternalPerimeter);
+                    }
+            if (i + 1 == static_cast<int>(zs.size()))
+                for (double y = 97; y <= 103 + 1e-9; y += 0.4) test::bead(l, 97, y, 103, y);
+        },
+        {97, 97, 103, 103});
     const plan::Obstacles obs(st, s);
     const auto chain = plan::drop_pillar(100, 100, static_cast<int>(zs.size()) - 1, plan::Top::Contact, st, obs, s);
     ASSERT_TRUE(chain && !chain->empty());

@@ -2,6 +2,7 @@
 // Layer stacks built directly (no G-code) for the planner's tests.
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "layers/layer_stack.hpp"
 
@@ -20,6 +21,26 @@ inline layers::LayerStack stack_of(int n, const std::function<void(int, layers::
         l.on_bed = i == 0;
         if (i > 0) l.beneath = {i - 1};
         fill(i, l);
+        st.layers.push_back(std::move(l));
+    }
+    st.bounds = bounds;
+    return st;
+}
+
+// Layers at the given heights, in that (printing) order: height from the
+// one before, below and beneath it, on_bed the first; each then filled (and
+// set straight, should it lie elsewhere) by fill(index, layer).
+inline layers::LayerStack stack_at(const std::vector<double>& zs, const std::function<void(int, layers::Layer&)>& fill,
+                                   layers::Bounds bounds) {
+    layers::LayerStack st;
+    for (std::size_t i = 0; i < zs.size(); ++i) {
+        layers::Layer l;
+        l.z = zs[i];
+        l.height = i ? zs[i] - zs[i - 1] : zs[i];
+        l.below = static_cast<int>(i) - 1;
+        l.on_bed = i == 0;
+        if (i > 0) l.beneath = {static_cast<int>(i) - 1};
+        fill(static_cast<int>(i), l);
         st.layers.push_back(std::move(l));
     }
     st.bounds = bounds;

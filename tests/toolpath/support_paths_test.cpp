@@ -230,18 +230,9 @@ namespace {
 toolpath::SupportPaths on_raft(double gap, plan::Base base = plan::Base::Model) {
     Settings s;
     s.layer_height = 0.2;
-    layers::LayerStack st;
     std::vector<double> zs = {0.3, 0.55, 0.8};
     for (int k = 0; k < 6; ++k) zs.push_back(0.8 + gap + 0.2 * k);
-    for (std::size_t i = 0; i < zs.size(); ++i) {
-        layers::Layer l;
-        l.z = zs[i];
-        l.height = i ? zs[i] - zs[i - 1] : zs[i];
-        l.below = static_cast<int>(i) - 1;
-        l.on_bed = i == 0;
-        st.layers.push_back(l);
-    }
-    st.bounds = {0, 0, 60, 60};
+    const layers::LayerStack st = test::stack_at(zs, [](int, layers::Layer&) {}, {0, 0, 60, 60});
     plan::Scaffold sc;
     plan::Column c = pillar(30, 30, zs.back());
     c.base = base;
@@ -313,17 +304,16 @@ TEST(SupportPaths, AColumnBesideTheRaftIsBondedAcrossTheSameGap) {
 TEST(SupportPaths, ABondGoesUnderTheLowerOfTwoLayersPrintedOutOfOrder) {
     Settings s;
     s.layer_height = 0.2;
-    layers::LayerStack st;
-    const std::vector<double> zs = {0.3, 0.45, 0.55, 0.65, 1.15, 1.13, 1.33, 1.53};
-    for (std::size_t i = 0; i < zs.size(); ++i) {
-        layers::Layer l;
-        l.z = zs[i];
-        l.height = i ? zs[i] - zs[i - 1] : zs[i];
-        l.below = i == 5 ? 3 : static_cast<int>(i) - 1;  // 1.13 lies on the raft's 0.65
-        l.on_bed = i == 0;
-        st.layers.push_back(l);
-    }
-    st.bounds = {0, 0, 60, 60};
+    const layers::LayerStack st = test::stack_at(
+        {0.3, 0.45, 0.55, 0.65, 1.15, 1.13, 1.33, 1.53},
+        [](int i, layers::Layer& l) {
+            if (i == 5) {  // 1.13 lies on the raft's 0.65
+                l.below = 3;
+                l.height = 1.13 - 0.65;
+                l.beneath = {3};
+            }
+        },
+        {0, 0, 60, 60});
     plan::Scaffold sc;
     plan::Column tall = pillar(30, 30, 1.53), tip = pillar(40, 30, 1.13);
     tall.base = tip.base = plan::Base::Model;
