@@ -333,3 +333,23 @@ TEST(SupportPaths, ABondGoesUnderTheLowerOfTwoLayersPrintedOutOfOrder) {
     EXPECT_EQ(paths.layers[2].paths.size(), 2u);
     for (std::size_t i = 1; i < paths.layers.size(); ++i) EXPECT_FALSE(paths.layers[i].bond());
 }
+
+// Two columns whose loops are nearly one (centres 0.1 mm apart, radii 1.0
+// and 1.3: 0.4 mm apart at most, within a 0.2 mm layer's reach): one loop
+// is printed, and it is the wider, the stiffer column's, whichever comes
+// first in the plan.
+TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Column narrow = pillar(30, 30, 5), wide = pillar(30.1, 30, 5);
+    wide.radius = 1.3;
+    plan::Scaffold sc;
+    sc.columns = {narrow, wide};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 10);  // z 2.2: above the feet, below the tips
+    ASSERT_NE(lp, nullptr);
+    ASSERT_EQ(lp->paths.size(), 1u);
+    double far = 0;
+    for (const auto& p : lp->paths.front().points) far = std::max(far, std::hypot(p.x - 30.1, p.y - 30));
+    EXPECT_NEAR(far, plan::loop_shape(1.3, s.support_width).centre_radius, 1e-9);
+}
