@@ -460,14 +460,16 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                            : bonds_under(scaffold.columns, by_base, heights, kBondGapLayers * h_nom,
                                          kBondMostLayers * h_nom, s, printed);
         // Widest loops first: of two loops nearly one (left out below), the
-        // wider is printed, the stiffer column it stands for.
+        // wider is printed, the stiffer column it stands for. Not on the
+        // first layer, where rafts and feet are laid out in the plan's order.
         std::vector<std::pair<double, std::size_t>> here;
         for (std::size_t ci = 0; ci < scaffold.columns.size(); ++ci) {
             const plan::Column& c = scaffold.columns[ci];
             if (z <= c.z0 + kZEps || z > c.z1 + kZEps) continue;
             here.emplace_back(-plan::column_radius_at(c, z, s), ci);
         }
-        std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        if (!first_layer)
+            std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [neg_r, ci] : here) {
             const plan::Column& c = scaffold.columns[ci];
             printed.print(ci, z);
