@@ -241,6 +241,15 @@ Settings build_settings(const gcode::Program& program, const SettingMap& environ
              s.first_layer_temperature);
     l.number({"bed_temperature", "hot_plate_temp", "material_bed_temperature"}, s.bed_temperature);
     l.flag({"spiral_vase", "spiral_mode", "magic_spiralize", "spiralVaseMode"}, s.spiral_vase);
+    // Fuzzy skin: PrusaSlicer and OrcaSlicer say where ("none", "external",
+    // "all"), Cura whether; each how far a wall's points may stray.
+    bool fuzzy = false;
+    if (const std::string* where = l.text({"fuzzy_skin"})) fuzzy = *where != "none" && *where != "disabled" && !where->empty();
+    else l.flag({"magic_fuzzy_skin_enabled"}, fuzzy);
+    if (fuzzy) {
+        s.fuzzy_skin_mm = 0.3;
+        l.number({"fuzzy_skin_thickness", "magic_fuzzy_skin_thickness"}, s.fuzzy_skin_mm);
+    }
     if (!l.flag({"complete_objects"}, s.sequential_printing)) {
         if (const std::string* seq = l.text({"print_sequence"}))
             s.sequential_printing = *seq == "by object" || *seq == "one_at_a_time";

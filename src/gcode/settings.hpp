@@ -37,6 +37,7 @@ struct Settings {
     double temperature = 210, first_layer_temperature = 215, bed_temperature = 60;
     double slicer_max_bridge = 10;    // bridge limit for slicer-marked bridges
     bool spiral_vase = false;
+    double fuzzy_skin_mm = 0;         // fuzzy skin's jitter, mm (0 = off)
     bool sequential_printing = false;
 
     // --- detection ---

@@ -138,3 +138,18 @@ TEST(Config, CentredCuraBedAndUnstatedBed) {
     const auto none = gcode::parse(body, "none.gcode");
     EXPECT_FALSE(build_settings(none, {}, {}).bed_stated);
 }
+
+// Fuzzy skin, as PrusaSlicer and OrcaSlicer say it (where, how far) and as
+// Cura does (whether, how far); off without a word.
+TEST(Config, FuzzySkin) {
+    const std::string body = "G28\nG1 Z0.2 F3000\nG1 X0 Y0 F3000\nG1 X10 Y0 E1 F1200\n";
+    auto fuzz = [&](const std::string& config) {
+        return build_settings(gcode::parse(body + config, "fuzzy.gcode"), {}, {}).fuzzy_skin_mm;
+    };
+    EXPECT_DOUBLE_EQ(fuzz("; fuzzy_skin = external\n; fuzzy_skin_thickness = 0.25\n"), 0.25);
+    EXPECT_DOUBLE_EQ(fuzz("; fuzzy_skin = all\n"), 0.3);
+    EXPECT_DOUBLE_EQ(fuzz("; fuzzy_skin = none\n; fuzzy_skin_thickness = 0.25\n"), 0);
+    EXPECT_DOUBLE_EQ(fuzz("; magic_fuzzy_skin_enabled = True\n; magic_fuzzy_skin_thickness = 0.4\n"), 0.4);
+    EXPECT_DOUBLE_EQ(fuzz("; magic_fuzzy_skin_enabled = False\n"), 0);
+    EXPECT_DOUBLE_EQ(fuzz(""), 0);
+}
