@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <numbers>
@@ -397,27 +398,20 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     // kUnstatedBedMargin around them (support beside the model's edge).
     Settings judged = settings;
     if (!settings.bed_stated) {
-        auto hold = [&](const gcode::Move& m) {
-            judged.bed_min_x = std::min({judged.bed_min_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
-            judged.bed_min_y = std::min({judged.bed_min_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
-            judged.bed_max_x = std::max({judged.bed_max_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
-            judged.bed_max_y = std::max({judged.bed_max_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
-        };
-        bool any = false;
+        const double inf = std::numeric_limits<double>::infinity();
+        layers::Bounds own{inf, inf, -inf, -inf};
         for (const gcode::Move& m : original ? original->moves : out.moves)
             if (m.kind == gcode::MoveKind::Extrude && (original || inserted.empty() || !inserted[m.line])) {
-                if (!any) {
-                    judged.bed_min_x = judged.bed_max_x = m.x0;
-                    judged.bed_min_y = judged.bed_max_y = m.y0;
-                    any = true;
-                }
-                hold(m);
+                own.min_x = std::min({own.min_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
+                own.min_y = std::min({own.min_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
+                own.max_x = std::max({own.max_x, static_cast<double>(m.x0), static_cast<double>(m.x1)});
+                own.max_y = std::max({own.max_y, static_cast<double>(m.y0), static_cast<double>(m.y1)});
             }
-        if (any) {
-            judged.bed_min_x = std::min(judged.bed_min_x - kUnstatedBedMargin, settings.bed_min_x);
-            judged.bed_min_y = std::min(judged.bed_min_y - kUnstatedBedMargin, settings.bed_min_y);
-            judged.bed_max_x = std::max(judged.bed_max_x + kUnstatedBedMargin, settings.bed_max_x);
-            judged.bed_max_y = std::max(judged.bed_max_y + kUnstatedBedMargin, settings.bed_max_y);
+        if (!own.empty()) {
+            judged.bed_min_x = std::min(own.min_x - kUnstatedBedMargin, settings.bed_min_x);
+            judged.bed_min_y = std::min(own.min_y - kUnstatedBedMargin, settings.bed_min_y);
+            judged.bed_max_x = std::max(own.max_x + kUnstatedBedMargin, settings.bed_max_x);
+            judged.bed_max_y = std::max(own.max_y + kUnstatedBedMargin, settings.bed_max_y);
         }
     }
     const Extrusion ex = extrusion_problems(out, judged, move_heights(out, stack), is_support_move);

@@ -47,6 +47,24 @@ struct Ring {
     double x, y, rc;  // centre and centre-line radius
 };
 
+// A column's loop of outer radius r around (cx, cy) and, for a wide column
+// not sized for METHOD's Standing rule, a second wall inside it (for the
+// same stiffness a wider single wall costs less): outer first.
+std::vector<Path> column_loops(const plan::Column& c, double cx, double cy, double r, PathKind kind, double speed,
+                               double width) {
+    Path p;
+    p.kind = kind;
+    p.width = width;
+    p.speed_mm_s = speed;
+    p.points = loop(cx, cy, r, width);
+    std::vector<Path> out{p};
+    if (plan::second_wall(c, r, width)) {
+        p.points = loop(cx, cy, r - width * 0.9, width);
+        out.push_back(std::move(p));
+    }
+    return out;
+}
+
 // Outline plus zigzag fill of a square of side `size` around (cx, cy).
 Path raft(double cx, double cy, double size, double width, double speed) {
     Path p;
@@ -346,18 +364,10 @@ std::vector<Bonded> bonds_under(const std::vector<plan::Column>& columns, const 
                         [&](const Ring& o) { return plan::loops_apart(o.x, o.y, o.rc, cx, cy, rc) <= kRetrace * w; }))
             continue;
         rings.push_back({cx, cy, rc});
-        Path p;
-        p.kind = c.x0 != c.x1 || c.y0 != c.y1 ? PathKind::Connector : PathKind::Pillar;
-        p.width = w;
-        p.speed_mm_s = s.support_speed_mm_s;
-        p.points = loop(cx, cy, r, w);
-        const bool two = plan::second_wall(c, r, w);
-        if (two) {
-            Path inner = p;
-            inner.points = loop(cx, cy, r - w * 0.9, w);
-            out.push_back({on, z, std::move(inner), false, rings.back()});
-        }
-        out.push_back({on, z, std::move(p), !two, rings.back()});
+        std::vector<Path> loops = column_loops(c, cx, cy, r, c.x0 != c.x1 || c.y0 != c.y1 ? PathKind::Connector : PathKind::Pillar,
+                                               s.support_speed_mm_s, w);
+        if (loops.size() > 1) out.push_back({on, z, std::move(loops[1]), false, rings.back()});  // the inner wall first
+        out.push_back({on, z, std::move(loops[0]), loops.size() == 1, rings.back()});
     }
     return out;
 }
@@ -472,11 +482,11 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             std::stable_sort(here.begin(), here.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (const auto& [neg_r, ci] : here) {
             const plan::Column& c = scaffold.columns[ci];
+            const double r = -neg_r;
             printed.print(ci, z);
             // A column whose base is on the bed starts on the first layer.
             double cx, cy;
             plan::column_centre_at(c, z, cx, cy);
-            double r = plan::column_radius_at(c, z, s);
             if (first_layer && c.base == plan::Base::Bed && c.raft_size > 0) {
                 Square sq{cx, cy, c.raft_size / 2};
                 bool overlaps = std::any_of(rafts.begin(), rafts.end(), [&](const Square& o) { return o.overlaps(sq); });
@@ -510,23 +520,12 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                     continue;
             }
             rings.push_back({cx, cy, rc});
-            Path p;
-            p.kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
-                     : (c.x0 != c.x1 || c.y0 != c.y1) ? PathKind::Connector : PathKind::Pillar;
-            p.width = w;
-            p.speed_mm_s = speed;
-            p.points = loop(cx, cy, r, w);
-            lp.paths.push_back(std::move(p));
-            // Wide pillars get a second wall so they stay stiff; not those
-            // widened for METHOD's Standing rule, sized as single walls
-            // (for the same stiffness a wider single wall costs less).
-            if (plan::second_wall(c, r, w)) {
-                Path inner = lp.paths.back();
-                inner.points = loop(cx, cy, r - w * 0.9, w);
-                lp.paths.push_back(std::move(inner));
-            } else {
-                single_loops.push_back({lp.paths.size() - 1, rings.back()});
-            }
+            const PathKind kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
+                                  : (c.x0 != c.x1 || c.y0 != c.y1)                                 ? PathKind::Connector
+                                                                                                  : PathKind::Pillar;
+            std::vector<Path> loops = column_loops(c, cx, cy, r, kind, speed, w);
+            if (loops.size() == 1) single_loops.push_back({lp.paths.size(), rings.back()});
+            for (Path& p : loops) lp.paths.push_back(std::move(p));
         }
         const int below = layer.below >= 0 ? printed_at[layer.below] : -1;
         merge_crossing_loops(lp.paths, single_loops, first_layer, below >= 0 ? &out.layers[below].paths : nullptr,
