@@ -9,23 +9,30 @@
 # reported): every output of the default method, and --method pillars where
 # its columns stand (a ratchet: the pillars of bunny, elephant and the
 # Slic3r overhang_test stand 0.3-0.9 N/mm, bunny's and elephant's with a
-# floating speck); reported only (--min-stiffness 0) at --min-overhang-area 0.
+# floating speck); at --min-overhang-area 0, every output of the default
+# method too (a ratchet for elephant.cura413, below), pillars reported only.
 # Known residuals at --min-overhang-area 0 since rule (b) was made exact
 # (issue 23, open): a ratchet, each bounded just above what it is today, so
 # nothing may get worse and each is listed until it is gone:
 #  - bunny.slic3r13, both methods: 0.24 mm^2 of a support bead at z 47.8;
 #  - elephant.cura413: 0.15 mm^2 (pillars), 0.45 mm^2 (scaffold) of model at
 #    z 12.8 that the tips set off their points leave unheld;
-#  - bunny.cura413 (scaffold): 0.88 mm^2 of a bar at z 7.6 beside a column
-#    top: every bar the planner tries there in its 6 rounds is refused by
-#    toolpath/bar_check, and the last is kept (10 rounds find a plan with
-#    none, in 3 times the time).
+#  - elephant.cura413 (scaffold) stands 1.61 N/mm at its weakest there (a
+#    fallback column squeezed beside the leg), checked at 1.6 instead of 2.
+# (bunny.cura413 had 0.88 mm^2 of a bar at z 7.6 beside a column top while
+# the planner had 7 plans; with 11 it finds one with none.)
 residual() {
   case "$1/$2" in
     bunny.slic3r13.nosup/*) echo 0.3 ;;
     elephant.cura413.nosup/pillars) echo 0.2 ;;
     elephant.cura413.nosup/scaffold) echo 0.5 ;;
-    bunny.cura413.nosup/scaffold) echo 0.9 ;;
+    *) echo 0 ;;
+  esac
+}
+zero_area_stiffness() {
+  case "$1/$2" in
+    elephant.cura413.nosup/scaffold) echo 1.6 ;;
+    */scaffold) echo 2 ;;
     *) echo 0 ;;
   esac
 }
@@ -56,8 +63,8 @@ for gz in "$src"/tests/data/corpus/*.gcode.gz; do
     case "$name" in *-fwretract|*-relE|*-zhop) n=$((n+1)); continue ;; esac
     "$build/scaffold" -q --method "$m" --min-overhang-area 0 "$tmp/in.gcode" -o "$tmp/out.gcode"
     allowed="$(residual "$name" "$m")"
-    if ! "$build/scaffold-check" --min-stiffness 0 --tolerance-mm2 "$allowed" --min-region-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
-      echo "FAIL $name --method $m --min-overhang-area 0 (unheld area allowed: $allowed mm^2):"; cat "$tmp/report.txt"; fail=1
+    if ! "$build/scaffold-check" --min-stiffness "$(zero_area_stiffness "$name" "$m")" --tolerance-mm2 "$allowed" --min-region-mm2 0 "$tmp/out.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; then
+      echo "FAIL $name --method $m --min-overhang-area 0 (unheld area allowed: $allowed mm^2, standing at $(zero_area_stiffness "$name" "$m") N/mm):"; cat "$tmp/report.txt"; fail=1
     fi
     n=$((n+1))
   done

@@ -2,18 +2,28 @@
 # Real-world G-code from 13 slicers (../shared/corpus/wild, present in CI;
 # third-party files, never copied into the project). For every file:
 # --method none is byte-identical; the default method either succeeds within
-# 60 s with an output passing scaffold-check --original at default options
-# but --min-stiffness 0 (the Standing rule reported, not failed: the
-# planner's half of issue 24 is not done),
-# or (spiral vases only, by the manifest's notes) refuses with a one-line
-# reason and leaves the file untouched in place. Exits 77 (skipped) when the
-# folder is absent; the synthetic reproductions in tests/layers/dialects_test
-# and tests/splice keep the features tested then.
-
+# 60 s with an output passing scaffold-check --original at its defaults
+# (held and standing: --min-stiffness 2), or (spiral vases only, by the
+# manifest's notes) refuses with a one-line reason and leaves the file
+# untouched in place. Exits 77 (skipped) when the folder is absent; the
+# synthetic reproductions in tests/layers/dialects_test and tests/splice
+# keep the features tested then.
+# Known residual of issue 24 (open), a ratchet at today's figure, listed
+# until it is gone:
+#  - cura31_space_shuttle: thin columns between the engines, 21 mm above
+#    their base on the launch stand, with no room to widen and no triangle
+#    of neighbours clear of the model to brace them: the weakest island
+#    0.251 N/mm (checked at --min-stiffness 0.25 instead of 2).
 set -euo pipefail
 build="$1"; src="$2"
 wild="$src/../shared/corpus/wild"
 if [ ! -d "$wild" ]; then echo "SKIPPED: no $wild (real-world files; CI has them)"; exit 77; fi
+min_stiffness() {
+  case "$1" in
+    cura31_space_shuttle) echo 0.25 ;;
+    *) echo 2 ;;
+  esac
+}
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 fail=0; n=0
 for gz in "$wild"/*.gcode.gz; do
@@ -42,11 +52,11 @@ for gz in "$wild"/*.gcode.gz; do
     n=$((n+1)); continue
   fi
   if [ $must_refuse -eq 1 ]; then echo "FAIL $name: a spiral vase was not refused"; fail=1; fi
-  set +e; "$build/scaffold-check" --min-stiffness 0 "$tmp/inplace.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; crc=$?; set -e
+  set +e; "$build/scaffold-check" --min-stiffness "$(min_stiffness "$name")" "$tmp/inplace.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; crc=$?; set -e
   if [ $crc -ne 0 ]; then
     echo "FAIL $name:"; cat "$tmp/report.txt"; fail=1
   fi
   n=$((n+1))
 done
 [ $fail -eq 0 ] || exit 1
-echo "wild: $n files: --method none byte-identical, vases refused, every other output passes scaffold-check"
+echo "wild: $n files: --method none byte-identical, vases refused, every other output passes scaffold-check, standing included"
