@@ -206,8 +206,17 @@ struct GroupPlanned {
 
 GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const plan::Obstacles& obstacles, const Settings& settings,
-                        SharedCavities& cavities, spdlog::logger& log, Progress* progress) {
+                        SharedCavities& cavities, spdlog::logger& log, Progress* progress, int threads = 1) {
     const auto hollows = [&]() -> const plan::Cavities& { return cavities.get(obstacles); };
+    // The bridge search's other threads, each asking the model through
+    // caches of its own, kept over the rounds as the first thread's are.
+    std::vector<std::unique_ptr<const plan::Obstacles>> own;
+    std::vector<const plan::Obstacles*> helpers;
+    if (settings.method == Method::Scaffold)
+        for (int t = 1; t < std::min(threads, plan::kMaxPlanThreads); ++t) {
+            own.push_back(obstacles.another());
+            helpers.push_back(own.back().get());
+        }
     const Clock::time_point t0 = Clock::now();
     overhang::SupportPoints points;
     plan::Scaffold scaffold;
@@ -232,7 +241,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, obstacles, settings)
                                                       : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers,
-                                                                            hollows, &replay);
+                                                                            hollows, &replay, helpers);
         // A tip set off its point (a slot, a wall) holds less of the sheet than
         // the point stood for (METHOD's rule (c)): what it leaves gets points and
         // pillars of its own, a few rounds at most.
@@ -309,7 +318,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
 std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const layers::LayerStack& first_copy,
                                         const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log,
-                                        Progress& progress) {
+                                        Progress& progress, int threads) {
     const std::size_t n = copies.offsets.size();
     const layers::Bounds first = copies.prototype;
     const Clock::time_point t0 = Clock::now();
@@ -318,7 +327,8 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     SharedCavities cavities(first_copy);
     log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     progress.say("planning one of {} copies", n);
-    GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress);
+    GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress,
+                                  plan::worker_count(plan::kMaxPlanThreads, threads));
     // Everything within the window, short of its edge by more than any column is wide.
     const double in = kCopyWindow - kCopyReach;
     const layers::Bounds inner{first.min_x - in, first.min_y - in, first.max_x + in, first.max_y + in};
@@ -379,7 +389,9 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings));
     SharedCavities cavities(stack);
-    if (groups.size() <= 1) return plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress);
+    if (groups.size() <= 1)
+        return plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress,
+                          plan::worker_count(plan::kMaxPlanThreads, req.threads));
     const int workers = plan::worker_count(groups.size(), req.threads);
     log.debug("{} support points in {} independent groups, planned on {} threads", detected.points.size(),
               groups.size(), workers);
@@ -522,7 +534,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
 
     std::optional<GroupPlanned> copied;
     if (copies && !points.points.empty()) {
-        copied = plan_copies(*copies, first_copy, points, overhangs, stack, settings, log, progress);
+        copied = plan_copies(*copies, first_copy, points, overhangs, stack, settings, log, progress, req.threads);
         if (!copied) {
             // The whole plate's overhangs, then, as for any plate.
             progress.say("finding overhangs on the whole plate");

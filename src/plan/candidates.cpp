@@ -71,6 +71,7 @@ struct BridgeSearch::Scratch {
     std::vector<char> carried;  // carries(i, z) at the current height
     std::vector<signed char> stands;
     std::vector<double> heights, wl, wr, ws;
+    const ModelView* model = nullptr;  // the model as this thread asks it
 };
 
 struct BridgeSearch::Index {
@@ -93,16 +94,19 @@ struct BridgeSearch::Index {
 };
 
 BridgeSearch::BridgeSearch(const ModelView& model, const Settings& settings, int threads,
-                           std::shared_ptr<ModelAnswers> answers)
-    : model_(&model), s_(settings), answers_(answers ? std::move(answers) : std::make_shared<ModelAnswers>()),
-      index_(std::make_shared<Index>()) {
+                           std::shared_ptr<ModelAnswers> answers, std::vector<const ModelView*> helpers)
+    : model_(&model), helpers_(std::move(helpers)), s_(settings),
+      answers_(answers ? std::move(answers) : std::make_shared<ModelAnswers>()), index_(std::make_shared<Index>()) {
     reach_ = std::hypot(s_.bridge_max_length, s_.bridge_max_offset) + 1e-6;
     // By default a second thread only without model queries: with them, on
     // real prints, the queries behind their one lock dominate and the
     // threads wait on each other (a 1204-point anchor: 12.3 s on two
-    // threads, 10.3 s on one).
+    // threads, 10.3 s on one). With a view of the model of its own per
+    // thread, one thread per view.
+    if (!helpers_.empty()) threads = static_cast<int>(helpers_.size()) + 1;
     if (threads <= 0) threads = model_->disc_clear ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     threads_ = std::min(threads, kMaxPlanThreads);
+    helpers_.resize(std::min<std::size_t>(helpers_.size(), static_cast<std::size_t>(threads_ - 1)));
     for (int t = 0; t < threads_; ++t) scratch_.push_back(std::make_shared<Scratch>());
 }
 
@@ -118,15 +122,17 @@ long microns(double v) {
 
 }  // namespace
 
-BridgeSearch::BridgeSearch(const BridgeSearch& o, const ModelView& model)
-    : model_(&model), s_(o.s_), reach_(o.reach_), points_(o.points_), alive_(o.alive_), seeds_(o.seeds_),
+BridgeSearch::BridgeSearch(const BridgeSearch& o, const ModelView& model, std::vector<const ModelView*> helpers)
+    : model_(&model), helpers_(std::move(helpers)), s_(o.s_), reach_(o.reach_), points_(o.points_), alive_(o.alive_), seeds_(o.seeds_),
       dirty_(o.dirty_), ranked_(o.ranked_), rejected_(o.rejected_), answers_(o.answers_), misses_(o.misses_),
       evaluations_(o.evaluations_), index_(std::make_shared<Index>(*o.index_)), threads_(o.threads_) {
+    // Views for as many threads as the original had, or none.
+    if (helpers_.size() + 1 != static_cast<std::size_t>(threads_)) helpers_.clear();
     for (int t = 0; t < threads_; ++t) scratch_.push_back(std::make_shared<Scratch>());
 }
 
-std::unique_ptr<BridgeSearch> BridgeSearch::clone(const ModelView& model) const {
-    return std::unique_ptr<BridgeSearch>(new BridgeSearch(*this, model));
+std::unique_ptr<BridgeSearch> BridgeSearch::clone(const ModelView& model, std::vector<const ModelView*> helpers) const {
+    return std::unique_ptr<BridgeSearch>(new BridgeSearch(*this, model, std::move(helpers)));
 }
 
 BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y1, double z) {
@@ -180,18 +186,21 @@ void BridgeSearch::mark_around(double x, double y) {
     }
 }
 
-bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double z) {
-    if (!model_->segment_clear) return true;
+bool BridgeSearch::bar_clear(const ModelView& mv, double x0, double y0, double x1, double y1, double z) {
+    if (!mv.segment_clear) return true;
     Key key = key_of(x0, y0, x1, y1, z);
-    const auto lock = model_lock();
+    auto lock = model_lock();
     if (const bool* known = answers_->bars.find(key)) return *known;
+    // Each thread asks a view of its own: only the answers are shared.
+    if (!helpers_.empty()) lock.unlock();
     // The bar fills the layers up to kBarThickness above z; its ends reach
     // into the pillar tops, so the whole pillar radius keeps the gap.
-    std::vector<double> layers = model_->tops_between(z, z + kBarThickness, s_.layer_height);
+    std::vector<double> layers = mv.tops_between(z, z + kBarThickness, s_.layer_height);
     bool ok = !layers.empty();
     for (double zl : layers)
-        ok = ok && model_->segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
-    answers_->bars.insert(key, ok);
+        ok = ok && mv.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
+    if (!helpers_.empty()) lock.lock();
+    answers_->bars.insert(key, ok);  // the same answer, should another thread have stored it meanwhile
     return ok;
 }
 
@@ -199,12 +208,14 @@ bool BridgeSearch::bar_clear(double x0, double y0, double x1, double y1, double 
 // asked once per end): a span with an end that cannot stand is no candidate,
 // rather than a best that is taken, fails and is rejected one at a time
 // (elephant: 17,000 such rejects before this test moved here).
-bool BridgeSearch::end_stands(double x, double y, double z) {
-    if (!model_->end_stands) return true;
+bool BridgeSearch::end_stands(const ModelView& mv, double x, double y, double z) {
+    if (!mv.end_stands) return true;
     const Key key{microns(x), microns(y), microns(z), 0, 0};
-    const auto lock = model_lock();
+    auto lock = model_lock();
     if (const bool* known = answers_->ends.find(key)) return *known;
-    bool ok = model_->end_stands(x, y, z);
+    if (!helpers_.empty()) lock.unlock();
+    bool ok = mv.end_stands(x, y, z);
+    if (!helpers_.empty()) lock.lock();
     answers_->ends.insert(key, ok);
     return ok;
 }
@@ -359,7 +370,11 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         // The bar before the ends when the bar is tested here at all: a
         // blocked bar spares the pillar searches under its ends.
         if (!rejected_.empty() && rejected_.contains(key_of(x0, y0, x1, y1, z))) return false;
-        if (eager && !bar_clear(x0, y0, x1, y1, z)) {
+        // Turned down as offered, one at a time, each such bar cost the seeds
+        // offering it a search again (bunny: about 2000 searches of one seed
+        // over five plans); left out here, the same bar is the best allowed.
+        if (model_->bar_forbidden && model_->bar_forbidden(z, x0, y0, x1, y1)) return false;
+        if (eager && !bar_clear(*sc.model, x0, y0, x1, y1, z)) {
             blocked = true;
             return false;
         }
@@ -368,7 +383,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
             stands_z = z;
         }
         auto end_ok = [&](int i, double x, double y) {
-            if (!stands[i]) stands[i] = end_stands(x, y, z) ? 1 : 2;
+            if (!stands[i]) stands[i] = end_stands(*sc.model, x, y, z) ? 1 : 2;
             return stands[i] == 1;
         };
         return end_ok(a, x0, y0) && end_ok(b, x1, y1);
@@ -508,6 +523,9 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
 // and, on a busy machine, a wait in the join for a core (measured: with 32,
 // 2 threads were slower than 1 while another build ran on the other core).
 constexpr std::size_t kSeedsPerThread = 128;
+// The same for threads with a model view of their own, which never wait on
+// each other's model queries.
+constexpr std::size_t kSeedsPerOwnThread = 16;
 
 void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
     for (int seed : seeds) {
@@ -515,7 +533,9 @@ void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
         if (sd.has) ranked_.erase({-sd.best.score, seed});
         if (alive_[seed / s_.sweep_directions]) ++evaluations_;
     }
-    const int threads = static_cast<int>(std::min<std::size_t>(threads_, seeds.size() / kSeedsPerThread));
+    const int threads = static_cast<int>(
+        std::min<std::size_t>(threads_, seeds.size() / (helpers_.empty() ? kSeedsPerThread : kSeedsPerOwnThread)));
+    for (int t = 0; t < threads_; ++t) scratch_[t]->model = &model_of(t);
     if (threads <= 1) {
         for (int seed : seeds) evaluate(seed, *scratch_[0]);
     } else {
@@ -538,15 +558,19 @@ void BridgeSearch::evaluate_all(const std::vector<int>& seeds) {
         if (seeds_[seed].has) ranked_.insert({-seeds_[seed].best.score, seed});
 }
 
+void BridgeSearch::refresh() {
+    std::vector<int> todo;
+    todo.swap(dirty_);
+    std::sort(todo.begin(), todo.end());
+    // A seed removed and marked again is listed twice: once is enough.
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    todo.erase(std::remove_if(todo.begin(), todo.end(), [&](int seed) { return !seeds_[seed].dirty; }), todo.end());
+    evaluate_all(todo);
+}
+
 std::optional<Candidate> BridgeSearch::best() {
     for (;;) {
-        std::vector<int> todo;
-        todo.swap(dirty_);
-        std::sort(todo.begin(), todo.end());
-        // A seed removed and marked again is listed twice: once is enough.
-        todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
-        todo.erase(std::remove_if(todo.begin(), todo.end(), [&](int seed) { return !seeds_[seed].dirty; }), todo.end());
-        evaluate_all(todo);
+        refresh();
         if (ranked_.empty()) return std::nullopt;
         int seed = ranked_.begin()->second;
         Seed& sd = seeds_[seed];
@@ -555,7 +579,7 @@ std::optional<Candidate> BridgeSearch::best() {
         // Another seed's bridge on the same line may have been rejected since.
         bool ok = !rejected_.contains(key);
         if (ok && !sd.bar_checked) {
-            ok = bar_clear(c.x0, c.y0, c.x1, c.y1, c.z);
+            ok = bar_clear(*model_, c.x0, c.y0, c.x1, c.y1, c.z);
             if (ok) sd.bar_checked = true;
             else {
                 rejected_.insert(key, 1);

@@ -61,6 +61,10 @@ struct ModelView {
     // A bar at height z would be trapped in a hollow of the model (plan/
     // cavities); empty: never.
     std::function<bool(double z, double x0, double y0, double x1, double y1)> bar_trapped;
+    // The part of bar_trapped that is cheap and safe on any thread (bars an
+    // earlier plan could not hold): the search leaves such bars out itself
+    // instead of offering them one at a time. Empty: none.
+    std::function<bool(double z, double x0, double y0, double x1, double y1)> bar_forbidden;
 
     // Largest layer top <= z (z itself without layers); < 0 when none.
     double snap_down(double z) const;
@@ -219,19 +223,21 @@ struct ModelAnswers {
 // seed's result depends only on the active set and on the model's answers,
 // which are pure (their caches and the model's own are behind one lock),
 // and the ranking is updated afterwards in seed order, so the plan is the
-// same for any thread count.
+// same for any thread count. With `helpers` (a model view per thread
+// after the first, each over caches of its own: Obstacles::another), the
+// threads ask the model at once and only the shared answers are locked.
 inline constexpr int kMaxPlanThreads = 4;
 class BridgeSearch {
 public:
     // `answers`: shared with other searches on the same model and settings
     // (null: its own).
     BridgeSearch(const ModelView& model, const Settings& settings, int threads = 0,
-                 std::shared_ptr<ModelAnswers> answers = nullptr);
+                 std::shared_ptr<ModelAnswers> answers = nullptr, std::vector<const ModelView*> helpers = {});
     BridgeSearch(const BridgeSearch&) = delete;  // the rtree and buffers are its own
     BridgeSearch& operator=(const BridgeSearch&) = delete;
     // A copy of the search as it stands (its model's answers shared), asking
     // `model` from now on: a plan made again resumes from it.
-    std::unique_ptr<BridgeSearch> clone(const ModelView& model) const;
+    std::unique_ptr<BridgeSearch> clone(const ModelView& model, std::vector<const ModelView*> helpers = {}) const;
 
     int add(const Active& a);   // returns the point's id
     void remove(int id);
@@ -242,11 +248,15 @@ public:
     // The best-scoring candidate over all seeds whose bar is clear of the
     // model and which was not rejected; nullopt when no bridge has positive gain.
     std::optional<Candidate> best();
+    // Recomputes the seeds a step left out of date, as best() does first: a
+    // state kept for a plan made again is kept searched (a plan made again
+    // starts where this one did, so its first search is not made twice).
+    void refresh();
     // Never offer this bridge again (it failed a later check).
     void reject(const Candidate& c);
     // Whether a pillar can stand under a bridge end at (x, y, z): the model
     // view's test, asked once per end and remembered.
-    bool end_stands(double x, double y, double z);
+    bool end_stands(double x, double y, double z) { return end_stands(*model_, x, y, z); }
     // No connector reaches point `id` from c's bar: bars on the same line at
     // the same height no longer count it as carried. Without this a seed
     // offers the same failing bar again with each other pair of ends, one
@@ -272,10 +282,15 @@ private:
     struct Scratch;                 // evaluate()'s buffers, one per thread
     void evaluate(int seed, Scratch& sc);
     void evaluate_all(const std::vector<int>& seeds);
-    bool bar_clear(double x0, double y0, double x1, double y1, double z);
+    // The model's answers as asked through `mv` (the calling thread's view).
+    bool bar_clear(const ModelView& mv, double x0, double y0, double x1, double y1, double z);
+    bool end_stands(const ModelView& mv, double x, double y, double z);
+    // Thread t's view of the model.
+    const ModelView& model_of(int t) const { return t == 0 || helpers_.empty() ? *model_ : *helpers_[t - 1]; }
 
-    BridgeSearch(const BridgeSearch& other, const ModelView& model);
+    BridgeSearch(const BridgeSearch& other, const ModelView& model, std::vector<const ModelView*> helpers);
     const ModelView* model_;
+    std::vector<const ModelView*> helpers_;  // threads 1.. : views of their own (empty: all ask model_)
     const Settings& s_;
     double reach_ = 0;  // radius of the window's bounding circle
     std::vector<Active> points_;

@@ -96,7 +96,10 @@ struct BridgeReplay::Log {
     std::vector<Candidate> offered;     // what the search offered, in order
     std::vector<char> trapped;          // whether bar_trapped turned it down
     std::vector<Active> start;          // the points it was made for
-    std::size_t every = 8;              // offers between two kept states
+    // Offers between two kept states: every one at first (a plan whose
+    // search leaves forbidden bars out offers little more than the bars it
+    // takes), doubling as the states thin out.
+    std::size_t every = 1;
 };
 
 BridgeReplay::BridgeReplay() = default;
@@ -118,7 +121,8 @@ bool same_start(const std::vector<Active>& a, const std::vector<Active>& b) {
 // The greedy loop (METHOD.md step 4): take the best bridge that can really
 // be built, remove what it carries, add its two ends, repeat.
 BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0,
-                        std::shared_ptr<ModelAnswers> answers = nullptr, BridgeReplay* replay = nullptr) {
+                        std::shared_ptr<ModelAnswers> answers = nullptr, BridgeReplay* replay = nullptr,
+                        const std::vector<const ModelView*>& helpers = {}) {
     BridgePlan out;
     std::unique_ptr<BridgeSearch> owned;
     // Bounded work where the model is in the way everywhere.
@@ -135,14 +139,14 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         }
         while (log->snaps.size() > 1 && log->snaps.back().offers > first) log->snaps.pop_back();
         const BridgeReplay::Log::Snap& from = log->snaps.back();
-        owned = from.search->clone(m);
+        owned = from.search->clone(m, helpers);
         out = from.out;
         rejects_left = from.rejects_left;
         log->offered.resize(from.offers);
         log->trapped.resize(from.offers);
         replay->offers_replayed += static_cast<long long>(from.offers);
     } else {
-        owned = std::make_unique<BridgeSearch>(m, s, threads, std::move(answers));
+        owned = std::make_unique<BridgeSearch>(m, s, threads, std::move(answers), helpers);
         for (const Active& a : start) owned->add(a);
         if (replay) {
             replay->log = std::make_unique<BridgeReplay::Log>();
@@ -154,7 +158,8 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
     for (;;) {
         if (log && log->offered.size() % log->every == 0 &&
             (log->snaps.empty() || log->snaps.back().offers < log->offered.size())) {
-            log->snaps.push_back({log->offered.size(), search.clone(m), out, rejects_left});
+            search.refresh();
+            log->snaps.push_back({log->offered.size(), search.clone(m, helpers), out, rejects_left});
             if (log->snaps.size() > kReplaySnaps) {
                 std::vector<BridgeReplay::Log::Snap> kept;
                 for (std::size_t i = 0; i < log->snaps.size(); i += 2) kept.push_back(std::move(log->snaps[i]));
@@ -377,25 +382,37 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, doubl
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers,
-                       const std::function<const Cavities&()>& shared_cavities, BridgeReplay* replay) {
+                       const std::function<const Cavities&()>& shared_cavities, BridgeReplay* replay,
+                       const std::vector<const Obstacles*>& helper_obstacles) {
     // Layers by z without purge lines: the layer above a height.
     LayerIndex by_z;
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
         if (!stack.layers[i].purge) by_z.by_z.emplace_back(stack.layers[i].z, i);
     std::stable_sort(by_z.by_z.begin(), by_z.by_z.end());
 
-    ModelView m = model_view(obs);
     // Bridge ends need a pillar that drop_pillar can really build.
-    m.end_stands = [&](double x, double y, double z) {
-        int above = by_z.above(z);
-        return above >= 0 && drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, false).has_value();
+    auto view_of = [&](const Obstacles& o) {
+        ModelView v = model_view(o);
+        v.end_stands = [&stack, &s, &by_z, op = &o](double x, double y, double z) {
+            int above = by_z.above(z);
+            return above >= 0 &&
+                   drop_pillar(x, y, above, Top::Bridge, stack, *op, s, nullptr, TipPlaces::Any, false).has_value();
+        };
+        return v;
     };
+    ModelView m = view_of(obs);
+    // The search's other threads ask the same model through caches of their own.
+    std::vector<ModelView> helper_views;
+    for (const Obstacles* o : helper_obstacles) helper_views.push_back(view_of(*o));
+    std::vector<const ModelView*> helpers;
+    for (const ModelView& v : helper_views) helpers.push_back(&v);
     // Bars that would be trapped in a hollow of the model are no bridges:
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
     auto is_forbidden = [&](double z, double x0, double y0, double x1, double y1) {
         return near_forbidden(forbidden, {x0, y0, x1, y1, z, {}, 0, 0}, s.layer_height);
     };
+    if (!forbidden.empty()) m.bar_forbidden = is_forbidden;
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
         if (is_forbidden(z, x0, y0, x1, y1)) return true;
         if (shared_cavities) return shared_cavities().bar_trapped(x0, y0, x1, y1, z);
@@ -409,7 +426,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
         start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
-    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers), replay);
+    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers), replay, helpers);
     Scaffold out;
     out.bridges = std::move(plan.bridges);
     out.columns = std::move(plan.connectors);

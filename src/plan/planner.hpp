@@ -68,9 +68,13 @@ struct BridgeReplay {
 // a bridge is placed only where both its ends get one. Plans made again on
 // the same stack, obstacles and settings may share `answers`, and the
 // model's hollows (`cavities`; empty: mapped here when the first bar is taken).
+// `helpers`: obstacles over the same model with caches of their own
+// (Obstacles::another), one per extra thread of the bridge search; the plan
+// does not depend on them.
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack,
                        const Obstacles& obstacles, const Settings& settings,
                        const std::vector<Bridge>& forbidden = {}, std::shared_ptr<ModelAnswers> answers = nullptr,
-                       const std::function<const Cavities&()>& cavities = nullptr, BridgeReplay* replay = nullptr);
+                       const std::function<const Cavities&()>& cavities = nullptr, BridgeReplay* replay = nullptr,
+                       const std::vector<const Obstacles*>& helpers = {});
 
 }  // namespace scaffold::plan

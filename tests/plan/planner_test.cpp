@@ -343,6 +343,76 @@ TEST(PlannerDeterminism, AnyThreadCountGivesTheSamePlan) {
     }
 }
 
+TEST(PlannerDeterminism, ThreadsAskingTheModelThroughCachesOfTheirOwnGiveTheSamePlan) {
+    // The pipeline's search on the real obstacles (a wall 1 mm wide at x 30
+    // up to z 20, and a block the pillars step around), its extra threads
+    // each asking an Obstacles::another: the plan of one thread, on the
+    // first plan and on one made again without a bar (resumed).
+    auto st = empty_stack(45, 70);
+    for (auto& l : st.layers) {
+        if (l.z <= 20 + 1e-9) l.segments.push_back({30, -5, 30, 65, 1.0f, gcode::Role::Perimeter, 0});
+        if (l.z <= 6 + 1e-9) l.segments.push_back({10, 40, 20, 40, 3.0f, gcode::Role::Perimeter, 0});
+    }
+    Settings s;
+    const plan::Obstacles obs(st, s);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> xy(2, 58);
+    std::uniform_int_distribution<int> layer(30, 60);
+    overhang::SupportPoints pts;
+    for (int i = 0; i < 200; ++i) {
+        const int l = layer(rng);
+        pts.points.push_back({xy(rng), xy(rng), st.layers[l].z, l});
+    }
+    const auto another = obs.another(), third = obs.another();
+    for (const std::vector<const plan::Obstacles*>& helpers :
+         {std::vector<const plan::Obstacles*>{another.get()}, std::vector<const plan::Obstacles*>{another.get(), third.get()}}) {
+        plan::BridgeReplay alone, with;
+        std::vector<plan::Bridge> forbidden;
+        const plan::Scaffold one = plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &alone);
+        ASSERT_GT(one.bridges.size(), 10u);
+        expect_same(one, plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &with, helpers));
+        forbidden.push_back(one.bridges[one.bridges.size() / 2]);
+        const plan::Scaffold again = plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &alone);
+        expect_same(again, plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &with, helpers));
+        EXPECT_GT(with.offers_replayed, 0);
+    }
+}
+
+TEST(PlannerForbidden, BarsLeftOutBySearchAreNeverOfferedAndThePlanIsTheSame) {
+    // Bars an earlier plan could not hold (here: any bar reaching x 25 to
+    // 35 below z 12) turned down as offered, or left out by the search
+    // itself (ModelView::bar_forbidden): the same plan, and the second way
+    // offers none of them.
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> xy(0, 60), height(5, 20);
+    std::vector<Xyz> xyz;
+    for (int i = 0; i < 60; ++i) xyz.push_back({xy(rng), xy(rng), 0.2 * std::round(height(rng) / 0.2)});
+    Settings s;
+    auto no_bar = [](double z, double x0, double, double x1, double) {
+        return z < 12 && std::max(x0, x1) >= 25 && std::min(x0, x1) <= 35;
+    };
+    int offered_lazy = 0, offered_left_out = 0;
+    plan::ModelView lazy = free_space(), left_out = free_space();
+    lazy.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
+        const bool t = no_bar(z, x0, y0, x1, y1);
+        offered_lazy += t;
+        return t;
+    };
+    left_out.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
+        const bool t = no_bar(z, x0, y0, x1, y1);
+        offered_left_out += t;
+        return t;
+    };
+    left_out.bar_forbidden = no_bar;
+    const plan::Scaffold a = plan::plan_scaffold(points_of(xyz), lazy, s, 1);
+    const plan::Scaffold b = plan::plan_scaffold(points_of(xyz), left_out, s, 1);
+    expect_same(a, b);
+    EXPECT_GT(offered_lazy, 0);
+    EXPECT_EQ(offered_left_out, 0);
+    for (const plan::Bridge& br : b.bridges) EXPECT_FALSE(no_bar(br.z, br.x0, br.y0, br.x1, br.y1));
+    EXPECT_GT(b.bridges.size(), 5u);
+}
+
 TEST(PlannerDeterminism, SameInputTwiceAndShuffledGiveTheSamePlan) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> xy(0, 50), z(5, 30);
