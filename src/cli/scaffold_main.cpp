@@ -65,8 +65,9 @@ int main(int argc, char** argv) {
         ("set", po::value<std::vector<std::string>>()->composing(),
          "override a slicer setting, KEY=VALUE (e.g. --set retract_length=1.5); repeatable")
         ("threads", po::value<int>(),
-         "threads for planning a plate's independent groups of objects (default: every core; 1 uses the least "
-         "memory, as on a Raspberry Pi; the output is the same for any count)")
+         "threads for planning: a plate's independent groups of objects, or one object's bar search (default: "
+         "every core, at most 4 for one object; 1 uses the least memory, as on a Raspberry Pi; the output is the "
+         "same for any count)")
         ("whole-plate",
          "plan a plate of exact copies (a slicer's instances of one object) as a whole, as any other plate; by "
          "default one copy is planned, clear of its neighbours as every copy sees them, and its plan moved to the others "
