@@ -14,7 +14,9 @@
 # Known residuals at --min-overhang-area 0 since rule (b) was made exact
 # (issue 23, open): a ratchet, each bounded just above what it is today, so
 # nothing may get worse and each is listed until it is gone:
-#  - bunny.slic3r13, both methods: 0.24 mm^2 of a support bead at z 47.8;
+#  - bunny.slic3r13, both methods: 0.20 mm^2 of a tip's bottom loop at z
+#    47.8 on the model (0.24 before bottom loops were walked as the
+#    validator walks them and moved aside where that holds them);
 #  - elephant.cura413: 0.15 mm^2 (pillars), 0.45 mm^2 (scaffold) of model at
 #    z 12.8 that the tips set off their points leave unheld;
 #  - elephant.cura413 (scaffold) stands 1.61 N/mm at its weakest there (a
@@ -23,7 +25,7 @@
 # the planner had 7 plans; with 11 it finds one with none.)
 residual() {
   case "$1/$2" in
-    bunny.slic3r13.nosup/*) echo 0.3 ;;
+    bunny.slic3r13.nosup/*) echo 0.25 ;;
     elephant.cura413.nosup/pillars) echo 0.2 ;;
     elephant.cura413.nosup/scaffold) echo 0.5 ;;
     *) echo 0 ;;

@@ -229,6 +229,9 @@ TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
 // its bottom loop crosses the slot, each side over it held at an end (the
 // validator's rule (b): a corner is held by the side before it, the rest is a
 // dangling end shorter than a side), as on a real anchor's narrow groove.
+// (Walked side by side as the validator walks it at a reach a cell larger
+// than its own, a side along the slot turns into a run between held ends,
+// which must cross: the loop settles up to 0.4 mm aside, still across it.)
 TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
     Settings s;
     const layers::LayerStack st = test::stack_of(
@@ -248,8 +251,8 @@ TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
     const plan::Column& base = chain->front();
     EXPECT_EQ(base.base, plan::Base::Model);
     EXPECT_NEAR(base.z0, 4.0, 1e-6);
-    EXPECT_NEAR(base.x0, 110, 1e-9);
-    EXPECT_NEAR(base.y0, 110, 1e-9);
+    EXPECT_LE(std::hypot(base.x0 - 110, base.y0 - 110), 0.4 + 1e-9);
+    EXPECT_LT(std::abs(base.y0 - 110), 0.5 - 0.1);  // its centre still over the slot
 }
 
 // METHOD's Standing rule: a column passing a narrow place keeps its taper
