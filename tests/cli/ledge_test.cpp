@@ -6,18 +6,15 @@
 // pillars land on the slab's edge. With nothing forgiven, the output holds
 // every bead.
 #include <gtest/gtest.h>
-#include <spdlog/logger.h>
-#include <spdlog/sinks/null_sink.h>
 
 #include <cmath>
-#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
 
 #include "check/printability.hpp"
-#include "cli/pipeline.hpp"
 #include "gcode/reader.hpp"
+#include "support/run.hpp"
 #include "support/synth.hpp"
 
 using namespace scaffold;
@@ -66,25 +63,13 @@ std::string ledge(double edge_deg, const std::vector<double>& offsets) {
     return g.str();
 }
 
-std::string scaffolded(std::string in) {
-    spdlog::logger log("ledge", std::make_shared<spdlog::sinks::null_sink_mt>());
-    std::string out;
-    cli::Request req;
-    req.input = req.output = "ledge.gcode";
-    req.input_text = &in;
-    req.output_text = &out;
-    req.overrides.emplace("--min-overhang-area", std::string("0"));
-    cli::run(req, log);
-    return out;
-}
-
 }  // namespace
 
 TEST(Ledge, BottomLoopsOnAnEdgeAreHeldSideBySide) {
     const std::vector<double> offsets{-0.9, -0.75, -0.6, -0.45, -0.3, -0.15, 0.0, 0.15, 0.3};
     for (double edge_deg : {0.0, 30.0, 50.0, 130.0}) {
         const std::string in = ledge(edge_deg, offsets);
-        const std::string out = scaffolded(in);
+        const std::string out = scaffold::testing::scaffolded(in, {{"--min-overhang-area", "0"}});
         const auto o = gcode::parse(out, "out.gcode");
         const auto i = gcode::parse(in, "in.gcode");
         check::CheckOptions opt;

@@ -4,16 +4,13 @@
 // follow down (its path looks for support within two nominal layers). The
 // column is bonded to the raft by loops printed in the gap.
 #include <gtest/gtest.h>
-#include <spdlog/logger.h>
-#include <spdlog/sinks/null_sink.h>
 
 #include <algorithm>
-#include <memory>
 #include <string>
 
 #include "check/printability.hpp"
-#include "cli/pipeline.hpp"
 #include "gcode/reader.hpp"
+#include "support/run.hpp"
 #include "support/synth.hpp"
 
 using namespace scaffold;
@@ -43,16 +40,6 @@ std::string on_raft(double gap, double overlap = 0) {
     return g.str();
 }
 
-std::string scaffolded(std::string in) {
-    spdlog::logger log("raft", std::make_shared<spdlog::sinks::null_sink_mt>());
-    std::string out;
-    cli::Request req;
-    req.input = req.output = "raft.gcode";
-    req.input_text = &in;
-    req.output_text = &out;
-    cli::run(req, log);
-    return out;
-}
 
 check::CheckReport checked(const std::string& out, const std::string& in) {
     const auto o = gcode::parse(out, "out.gcode");
@@ -76,7 +63,7 @@ std::string block_at(const std::string& out, const std::string& z) {
 // model's first layer at 1.35, and every island stands.
 TEST(Raft, ColumnsOverAnAirGapAreBondedToTheRaft) {
     const std::string in = on_raft(0.55);
-    const std::string out = scaffolded(in);
+    const std::string out = scaffold::testing::scaffolded(in);
     const std::string bond = block_at(out, "1.075");
     ASSERT_FALSE(bond.empty()) << "no bond block at z 1.075";
     // Printed at its own height before the model's first layer, whose
@@ -94,7 +81,7 @@ TEST(Raft, ColumnsOverAnAirGapAreBondedToTheRaft) {
 // printed before it, and every island stands.
 TEST(Raft, ABondGoesUnderTheLowerOfTwoLayersPrintedOutOfOrder) {
     const std::string in = on_raft(0.5, 0.22);
-    const std::string out = scaffolded(in);
+    const std::string out = scaffold::testing::scaffolded(in);
     const std::string head = "; scaffold: support for the layer at Z";
     double last = 0;
     int blocks = 0;
@@ -116,7 +103,7 @@ TEST(Raft, ABondGoesUnderTheLowerOfTwoLayersPrintedOutOfOrder) {
 // rule's two layers: no bond.
 TEST(Raft, AGapOfOneAndAHalfLayersNeedsNoBond) {
     const std::string in = on_raft(0.3);
-    const std::string out = scaffolded(in);
+    const std::string out = scaffold::testing::scaffolded(in);
     EXPECT_EQ(out.find("G1 Z0.95"), std::string::npos);
     const check::CheckReport r = checked(out, in);
     EXPECT_TRUE(r.ok()) << check::report_text(r);
