@@ -170,19 +170,33 @@ void BridgeSearch::remove(int id) {
 }
 
 // Seeds whose window (30 mm along their sweep line, 5 mm across) holds (x, y).
-void BridgeSearch::mark_around(double x, double y) {
+void BridgeSearch::mark_around(double x, double y, double margin) {
     const int D = s_.sweep_directions;
-    for (int id : index_->in_box(x - reach_, y - reach_, x + reach_, y + reach_)) {
+    const double r = reach_ + margin;
+    for (int id : index_->in_box(x - r, y - r, x + r, y + r)) {
         double dx = x - points_[id].x, dy = y - points_[id].y;
         for (int k = 0; k < D; ++k) {
             int seed = id * D + k;
             if (seeds_[seed].dirty) continue;
             double th = k * std::numbers::pi / D;
             double du = dx * std::cos(th) + dy * std::sin(th), dv = -dx * std::sin(th) + dy * std::cos(th);
-            if (std::abs(du) > s_.bridge_max_length + 1e-6 || std::abs(dv) > s_.bridge_max_offset + 1e-6) continue;
+            if (std::abs(du) > s_.bridge_max_length + margin + 1e-6 || std::abs(dv) > s_.bridge_max_offset + margin + 1e-6)
+                continue;
             seeds_[seed].dirty = true;
             dirty_.push_back(seed);
         }
+    }
+}
+
+void BridgeSearch::stale_near(double x0, double y0, double x1, double y1) {
+    // A bar near or along it has an end within a millimetre of it, or lies
+    // over it (kForbiddenNear, kForbiddenBeside): every seed whose window
+    // reaches within 2 mm of a point of it, sampled every millimetre.
+    const double len = std::hypot(x1 - x0, y1 - y0);
+    const int n = std::max(1, static_cast<int>(std::ceil(len)));
+    for (int i = 0; i <= n; ++i) {
+        const double t = static_cast<double>(i) / n;
+        mark_around(x0 + (x1 - x0) * t, y0 + (y1 - y0) * t, 2.0);
     }
 }
 
@@ -445,11 +459,14 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         };
         // An end with nothing carried at it loses to the next end inwards
         // (same points, shorter), unless that one is too short or was rejected.
+        // (A bar the search leaves out as forbidden counts as rejected here:
+        // offered, it would have been, and the longer span taken instead.)
         auto rejected_span = [&](int a, int b) {
-            if (rejected_.empty()) return false;
+            if (rejected_.empty() && !model_->bar_forbidden) return false;
             double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
             double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
-            return rejected_.contains(key_of(x0, y0, x1, y1, z));
+            return (!rejected_.empty() && rejected_.contains(key_of(x0, y0, x1, y1, z))) ||
+                   (model_->bar_forbidden && model_->bar_forbidden(z, x0, y0, x1, y1));
         };
         // A bar over a blocked one is blocked too: at this height, with the
         // left ends taken outwards, every bar reaching right to

@@ -248,6 +248,10 @@ public:
     // The best-scoring candidate over all seeds whose bar is clear of the
     // model and which was not rejected; nullopt when no bridge has positive gain.
     std::optional<Candidate> best();
+    // Marks for a search again the seeds that may offer a bar near or along
+    // the bar (x0, y0) -> (x1, y1): a state kept by an earlier plan was
+    // searched without the bars forbidden since (ModelView::bar_forbidden).
+    void stale_near(double x0, double y0, double x1, double y1);
     // Recomputes the seeds a step left out of date, as best() does first: a
     // state kept for a plan made again is kept searched (a plan made again
     // starts where this one did, so its first search is not made twice).
@@ -278,7 +282,7 @@ private:
     using Key = BarKey;
     static Key key_of(double x0, double y0, double x1, double y1, double z);
 
-    void mark_around(double x, double y);
+    void mark_around(double x, double y, double margin = 0);
     struct Scratch;                 // evaluate()'s buffers, one per thread
     void evaluate(int seed, Scratch& sc);
     void evaluate_all(const std::vector<int>& seeds);

@@ -122,7 +122,7 @@ bool same_start(const std::vector<Active>& a, const std::vector<Active>& b) {
 // be built, remove what it carries, add its two ends, repeat.
 BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0,
                         std::shared_ptr<ModelAnswers> answers = nullptr, BridgeReplay* replay = nullptr,
-                        const std::vector<const ModelView*>& helpers = {}) {
+                        const std::vector<const ModelView*>& helpers = {}, const std::vector<Bridge>& forbidden = {}) {
     BridgePlan out;
     std::unique_ptr<BridgeSearch> owned;
     // Bounded work where the model is in the way everywhere.
@@ -140,6 +140,9 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         while (log->snaps.size() > 1 && log->snaps.back().offers > first) log->snaps.pop_back();
         const BridgeReplay::Log::Snap& from = log->snaps.back();
         owned = from.search->clone(m, helpers);
+        // Its seeds were searched without the bars forbidden since (the
+        // search leaves them out itself): those that may offer one, again.
+        for (const Bridge& f : forbidden) owned->stale_near(f.x0, f.y0, f.x1, f.y1);
         out = from.out;
         rejects_left = from.rejects_left;
         log->offered.resize(from.offers);
@@ -426,7 +429,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         if (t < 0) continue;  // nothing under it to stand a support on: left to drop_pillar below
         start.push_back({p.x, p.y, stack.layers[t].z, i});
     }
-    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers), replay, helpers);
+    BridgePlan plan = plan_bridges(start, m, s, 0, std::move(answers), replay, helpers, forbidden);
     Scaffold out;
     out.bridges = std::move(plan.bridges);
     out.columns = std::move(plan.connectors);

@@ -378,11 +378,13 @@ TEST(PlannerDeterminism, ThreadsAskingTheModelThroughCachesOfTheirOwnGiveTheSame
     }
 }
 
-TEST(PlannerForbidden, BarsLeftOutBySearchAreNeverOfferedAndThePlanIsTheSame) {
+TEST(PlannerForbidden, BarsLeftOutBySearchAreNeverOfferedNorPlanned) {
     // Bars an earlier plan could not hold (here: any bar reaching x 25 to
-    // 35 below z 12) turned down as offered, or left out by the search
-    // itself (ModelView::bar_forbidden): the same plan, and the second way
-    // offers none of them.
+    // 35 below z 12) turned down as offered (bar_trapped alone), or left
+    // out by the search itself (ModelView::bar_forbidden): the second way
+    // offers none of them, and neither plans one. (The two plans may
+    // differ: a span whose shorter span inside it is forbidden is no
+    // longer passed over for it.)
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> xy(0, 60), height(5, 20);
     std::vector<Xyz> xyz;
@@ -406,11 +408,12 @@ TEST(PlannerForbidden, BarsLeftOutBySearchAreNeverOfferedAndThePlanIsTheSame) {
     left_out.bar_forbidden = no_bar;
     const plan::Scaffold a = plan::plan_scaffold(points_of(xyz), lazy, s, 1);
     const plan::Scaffold b = plan::plan_scaffold(points_of(xyz), left_out, s, 1);
-    expect_same(a, b);
     EXPECT_GT(offered_lazy, 0);
     EXPECT_EQ(offered_left_out, 0);
-    for (const plan::Bridge& br : b.bridges) EXPECT_FALSE(no_bar(br.z, br.x0, br.y0, br.x1, br.y1));
-    EXPECT_GT(b.bridges.size(), 5u);
+    for (const plan::Scaffold* sc : {&a, &b}) {
+        EXPECT_GT(sc->bridges.size(), 5u);
+        for (const plan::Bridge& br : sc->bridges) EXPECT_FALSE(no_bar(br.z, br.x0, br.y0, br.x1, br.y1));
+    }
 }
 
 TEST(PlannerDeterminism, SameInputTwiceAndShuffledGiveTheSamePlan) {
