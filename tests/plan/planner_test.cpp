@@ -39,6 +39,19 @@ plan::ModelView wall_at_20() {
 
 bool crosses_x(const plan::Bridge& b, double x) { return (b.x0 - x) * (b.x1 - x) <= 0; }
 
+// n points uniform over [0, xy_max]^2 at heights in [z_lo, z_hi] snapped to
+// 0.2 mm layers, drawn x, y, z in turn from a generator seeded `seed`.
+std::vector<Xyz> random_points(unsigned seed, int n, double xy_max, double z_lo, double z_hi) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> xy(0, xy_max), z(z_lo, z_hi);
+    std::vector<Xyz> out;
+    for (int i = 0; i < n; ++i) {
+        const double x = xy(rng), y = xy(rng);
+        out.push_back({x, y, 0.2 * std::round(z(rng) / 0.2)});
+    }
+    return out;
+}
+
 // Which structure holds each point: count of Contact tops naming it.
 std::vector<int> holders(const plan::Scaffold& sc, std::size_t n) {
     std::vector<int> held(n, 0);
@@ -331,10 +344,7 @@ TEST(PlannerPillars, EveryPointHeldByExactlyOneStructure) {
 TEST(PlannerDeterminism, AnyThreadCountGivesTheSamePlan) {
     // Enough points that a step's dirty seeds are split over threads; the
     // wall makes the bars and the ends ask the model (behind the lock).
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> xy(0, 60), z(5, 40);
-    std::vector<Xyz> xyz;
-    for (int i = 0; i < 300; ++i) xyz.push_back({xy(rng), xy(rng), 0.2 * std::round(z(rng) / 0.2)});
+    const std::vector<Xyz> xyz = random_points(5, 300, 60, 5, 40);
     Settings s;
     for (const plan::ModelView& m : {free_space(), wall_at_20()}) {
         auto one = plan::plan_scaffold(points_of(xyz), m, s, 1);
@@ -385,10 +395,7 @@ TEST(PlannerForbidden, BarsLeftOutBySearchAreNeverOfferedNorPlanned) {
     // offers none of them, and neither plans one. (The two plans may
     // differ: a span whose shorter span inside it is forbidden is no
     // longer passed over for it.)
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<double> xy(0, 60), height(5, 20);
-    std::vector<Xyz> xyz;
-    for (int i = 0; i < 60; ++i) xyz.push_back({xy(rng), xy(rng), 0.2 * std::round(height(rng) / 0.2)});
+    const std::vector<Xyz> xyz = random_points(3, 60, 60, 5, 20);
     Settings s;
     auto no_bar = [](double z, double x0, double, double x1, double) {
         return z < 12 && std::max(x0, x1) >= 25 && std::min(x0, x1) <= 35;
