@@ -188,6 +188,18 @@ void BridgeSearch::mark_around(double x, double y, double margin) {
     }
 }
 
+template <class Ask>
+bool BridgeSearch::answer(BarTable<bool>& table, const Key& key, Ask ask) {
+    auto lock = model_lock();
+    if (const bool* known = table.find(key)) return *known;
+    // Each thread asks a view of its own: only the answers are shared.
+    if (!helpers_.empty()) lock.unlock();
+    const bool ok = ask();
+    if (!helpers_.empty()) lock.lock();
+    table.insert(key, ok);  // the same answer, should another thread have stored it meanwhile
+    return ok;
+}
+
 void BridgeSearch::stale_near(double x0, double y0, double x1, double y1) {
     // A bar near or along it has an end within a millimetre of it, or lies
     // over it (kForbiddenNear, kForbiddenBeside): every seed whose window
@@ -202,20 +214,15 @@ void BridgeSearch::stale_near(double x0, double y0, double x1, double y1) {
 
 bool BridgeSearch::bar_clear(const ModelView& mv, double x0, double y0, double x1, double y1, double z) {
     if (!mv.segment_clear) return true;
-    Key key = key_of(x0, y0, x1, y1, z);
-    auto lock = model_lock();
-    if (const bool* known = answers_->bars.find(key)) return *known;
-    // Each thread asks a view of its own: only the answers are shared.
-    if (!helpers_.empty()) lock.unlock();
-    // The bar fills the layers up to kBarThickness above z; its ends reach
-    // into the pillar tops, so the whole pillar radius keeps the gap.
-    std::vector<double> layers = mv.tops_between(z, z + kBarThickness, s_.layer_height);
-    bool ok = !layers.empty();
-    for (double zl : layers)
-        ok = ok && mv.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
-    if (!helpers_.empty()) lock.lock();
-    answers_->bars.insert(key, ok);  // the same answer, should another thread have stored it meanwhile
-    return ok;
+    return answer(answers_->bars, key_of(x0, y0, x1, y1, z), [&] {
+        // The bar fills the layers up to kBarThickness above z; its ends reach
+        // into the pillar tops, so the whole pillar radius keeps the gap.
+        std::vector<double> layers = mv.tops_between(z, z + kBarThickness, s_.layer_height);
+        bool ok = !layers.empty();
+        for (double zl : layers)
+            ok = ok && mv.segment_clear(zl, x0, y0, x1, y1, s_.pillar_radius + s_.xy_gap);
+        return ok;
+    });
 }
 
 // Whether a pillar can stand under a bridge end (the model view's test,
@@ -224,14 +231,7 @@ bool BridgeSearch::bar_clear(const ModelView& mv, double x0, double y0, double x
 // (elephant: 17,000 such rejects before this test moved here).
 bool BridgeSearch::end_stands(const ModelView& mv, double x, double y, double z) {
     if (!mv.end_stands) return true;
-    const Key key{microns(x), microns(y), microns(z), 0, 0};
-    auto lock = model_lock();
-    if (const bool* known = answers_->ends.find(key)) return *known;
-    if (!helpers_.empty()) lock.unlock();
-    bool ok = mv.end_stands(x, y, z);
-    if (!helpers_.empty()) lock.lock();
-    answers_->ends.insert(key, ok);
-    return ok;
+    return answer(answers_->ends, Key{microns(x), microns(y), microns(z), 0, 0}, [&] { return mv.end_stands(x, y, z); });
 }
 
 void BridgeSearch::no_connector(int id, const Candidate& c) {

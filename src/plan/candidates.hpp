@@ -289,6 +289,10 @@ private:
     // The model's answers as asked through `mv` (the calling thread's view).
     bool bar_clear(const ModelView& mv, double x0, double y0, double x1, double y1, double z);
     bool end_stands(const ModelView& mv, double x, double y, double z);
+    // The answer stored for `key`, or ask() stored (the model asked
+    // outside the lock when each thread has a view of its own).
+    template <class Ask>
+    bool answer(BarTable<bool>& table, const Key& key, Ask ask);
     // Thread t's view of the model.
     const ModelView& model_of(int t) const { return t == 0 || helpers_.empty() ? *model_ : *helpers_[t - 1]; }
 

@@ -193,6 +193,7 @@ void smooth_caps(std::vector<Step>& path, const Column& proto, const layers::Lay
 // and the model's layer under it.
 struct ModelBase {
     int back_layer = -1, model_layer = -1;
+    double reach = 0;  // the self-supporting reach descend judged its rest with
 };
 
 // Offsets (mm) the bottom loop of a column standing on the model may be
@@ -212,8 +213,9 @@ constexpr int kSettleDirections = 16;
 // bar search's answers) is the vertex test's. Asked with the column's final
 // radius: a column on the model is narrowed after its way down is found.
 bool settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBase& base,
-                     const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double reach) {
+                     const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
     const int back_layer = base.back_layer, model_layer = base.model_layer;
+    const double reach = base.reach;
     if (path.size() < 2 || back_layer < 0) return false;  // a column's top stays under what it holds
     Step& back = path.back();
     const Step& up = path[path.size() - 2];
@@ -386,7 +388,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                     break;
                 }
         if (!rest) return false;
-        if (base != nullptr) *base = {back_layer, l};
+        if (base != nullptr) *base = {back_layer, l, rest_reach};
         proto.base = Base::Model;
         proto.z0 = layer.z;
         return true;
@@ -540,21 +542,18 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                 // On the model the lever is shorter: as narrow as that allows
                 // (inside the path found for the wider one). On a trunk, the
                 // trunk's base is the base: keep it.
-                double taper = c.taper;
-                if (c.taper > 0 && c.base != Base::Column)
+                const bool narrow = c.taper > 0 && c.base != Base::Column;
+                Column narrowed = c;
+                if (narrow)
                     // Never wider than the descent was checked for (a thin
                     // variant's own taper would be larger).
-                    taper = std::min(c.taper, stiff * taper_for(c.radius, c.hold_z - chain.front().z0,
-                                                                target_stiffness(s), give, s.support_width, s.modulus));
-                if (fit_base && c.base == Base::Model) {
-                    Column narrowed = c;
-                    narrowed.taper = taper;
-                    const double reach = stack.layers[top_layer].height *
-                                         std::tan(s.overhang_angle_deg * std::numbers::pi / 180) * 0.8;
-                    if (settle_on_model(narrowed, path, base, stack, obs, s, reach)) chain = columns_of(c, path);
-                }
-                if (c.taper > 0 && c.base != Base::Column)
-                    for (Column& piece : chain) piece.taper = taper;
+                    narrowed.taper = std::min(c.taper, stiff * taper_for(c.radius, c.hold_z - chain.front().z0,
+                                                                         target_stiffness(s), give, s.support_width,
+                                                                         s.modulus));
+                if (fit_base && c.base == Base::Model && settle_on_model(narrowed, path, base, stack, obs, s))
+                    chain = columns_of(c, path);
+                if (narrow)
+                    for (Column& piece : chain) piece.taper = narrowed.taper;
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
