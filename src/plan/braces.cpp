@@ -1,6 +1,8 @@
 #include "plan/braces.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -66,11 +68,11 @@ std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
 }
 
 double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc, const layers::LayerStack& stack,
-                        const Settings& s, double from) {
+                        const Settings& s, double from, double to) {
     const double w = s.support_width;
     double compliance = 0;
     for (const layers::Layer& layer : stack.layers) {
-        if (layer.purge || layer.z > top + kEps || layer.z <= from + kEps) continue;
+        if (layer.purge || layer.z > std::min(top, to) + kEps || layer.z <= from + kEps) continue;
         const Column* c = piece_at(chain, sc, layer.z);
         if (!c) continue;
         const double r = column_radius_at(*c, layer.z, s);
@@ -81,6 +83,131 @@ double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc
         compliance += arm * arm * layer.height / (s.modulus * inertia);
     }
     return compliance;
+}
+
+std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chains, const Scaffold& sc,
+                                           const layers::LayerStack& stack, const Settings& s) {
+    const std::size_t n = chains.size();
+    const double w = s.support_width;
+    std::vector<ColumnMeeting> out;
+    std::vector<double> tops;
+    for (const layers::Layer& layer : stack.layers)
+        if (!layer.purge) tops.push_back(layer.z);
+    std::sort(tops.begin(), tops.end());
+    struct Ring {
+        double x, y, r;
+    };
+    // A pillar's centre and outer radius on the layer at zc, or at its top
+    // where it ends under a bar at b.
+    auto ring = [&](const PillarChain& p, double zc, double b) -> std::optional<Ring> {
+        if (p.base > zc) return std::nullopt;
+        if (const Column* c = piece_at(p, sc, zc)) {
+            Ring r{0, 0, column_radius_at(*c, zc, s)};
+            column_centre_at(*c, zc, r.x, r.y);
+            return r;
+        }
+        if (std::abs(p.top - b) < kEps) {
+            const Column& c = sc.columns[p.pieces.back()];
+            return Ring{c.x1, c.y1, column_radius_at(c, c.z1, s)};
+        }
+        return std::nullopt;
+    };
+    // A bar of the plan (a brace ties at a node, which METHOD counts apart)
+    // on its first layer: every pillar it passes through or rests on.
+    for (const Bridge& br : sc.bridges) {
+        const auto first = std::upper_bound(tops.begin(), tops.end(), br.z + kEps);
+        if (br.brace || first == tops.end() || *first > br.z + kBarThickness + kEps) continue;
+        const layers::Segment seg{static_cast<float>(br.x0), static_cast<float>(br.y0), static_cast<float>(br.x1),
+                                  static_cast<float>(br.y1)};
+        std::vector<int> on;
+        for (std::size_t i = 0; i < n; ++i)
+            if (const auto r = ring(chains[i], *first, br.z))
+                if (layers::segment_distance(r->x, r->y, seg) <= r->r + w) on.push_back(static_cast<int>(i));
+        for (std::size_t a = 0; a < on.size(); ++a)
+            for (std::size_t b = a + 1; b < on.size(); ++b) out.push_back({br.z, on[a], on[b]});
+    }
+    // Loops touching: pairs whose boxes over their height come within a
+    // bead, layer by layer; a run of touching layers meets at its start.
+    struct Box {
+        double x0, y0, x1, y1;
+    };
+    std::vector<Box> boxes(n, Box{1e300, 1e300, -1e300, -1e300});
+    for (std::size_t i = 0; i < n; ++i)
+        for (int k : chains[i].pieces) {
+            const Column& c = sc.columns[k];
+            const double r = std::max({column_radius_at(c, c.z0, s), column_radius_at(c, c.z1, s), c.foot_radius});
+            Box& bx = boxes[i];
+            bx = {std::min({bx.x0, c.x0 - r, c.x1 - r}), std::min({bx.y0, c.y0 - r, c.y1 - r}),
+                  std::max({bx.x1, c.x0 + r, c.x1 + r}), std::max({bx.y1, c.y0 + r, c.y1 + r})};
+        }
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const Box &a = boxes[i], &b = boxes[j];
+            if (a.x0 > b.x1 + w || b.x0 > a.x1 + w || a.y0 > b.y1 + w || b.y0 > a.y1 + w) continue;
+            bool touching = false;
+            for (double z : tops) {
+                const auto p = ring(chains[i], z, -1), q = ring(chains[j], z, -1);
+                const bool touch = p && q && std::hypot(p->x - q->x, p->y - q->y) <= p->r + q->r + s.resolution;
+                if (touch && !touching) out.push_back({z, static_cast<int>(i), static_cast<int>(j)});
+                touching = touch;
+            }
+        }
+    return out;
+}
+
+bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_count, const std::vector<int>& ids, double lo,
+                      double b) {
+    std::vector<int> parent(chain_count);
+    for (int k = 0; k < chain_count; ++k) parent[k] = k;
+    auto root = [&](int k) {
+        while (parent[k] != k) k = parent[k] = parent[parent[k]];
+        return k;
+    };
+    for (const ColumnMeeting& m : meetings)
+        if (m.z > lo + kEps && m.z < b - kEps) parent[root(m.a)] = root(m.b);
+    for (std::size_t a = 0; a < ids.size(); ++a)
+        for (std::size_t c = a + 1; c < ids.size(); ++c)
+            if (ids[a] < chain_count && ids[c] < chain_count && root(ids[a]) == root(ids[c])) return false;
+    return true;
+}
+
+double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
+                      const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
+                      int chain_count, const Scaffold& sc, const layers::LayerStack& stack, const Settings& s) {
+    // A path down: a node's give, then pieces of pillars, each between two heights.
+    struct Piece {
+        const PillarChain* chain;
+        double from, to;
+    };
+    struct Down {
+        double c0 = 0;
+        std::vector<Piece> pieces;
+    };
+    auto compliance = [&](const Down& d, double z) {
+        double c = d.c0;
+        for (const Piece& p : d.pieces) c += chain_compliance(*p.chain, z, sc, stack, s, p.from, p.to);
+        return c;
+    };
+    std::array<Down, 3> down;
+    for (int i = 0; i < 3; ++i) down[i].pieces.push_back({cols[i], -1e300, 1e300});
+    double lo = -1e300;
+    for (double b : levels) {
+        std::array<double, 3> k{};
+        for (int i = 0; i < 3; ++i) {
+            down[i].pieces.back().to = b;
+            k[i] = 1 / compliance(down[i], b);
+        }
+        const int best = static_cast<int>(std::max_element(k.begin(), k.end()) - k.begin());
+        const bool node = distinct_columns(meetings, chain_count, {ids[0], ids[1], ids[2]}, lo, b) &&
+                          std::all_of(k.begin(), k.end(), [&](double ki) { return ki >= kBraceColumnShare * k[best]; });
+        lo = b;
+        const Down stiffest = down[best];
+        for (int i = 0; i < 3; ++i) {
+            down[i] = node ? Down{1 / (k[0] + k[1] + k[2]), {}} : stiffest;
+            down[i].pieces.push_back({cols[i], b, 1e300});
+        }
+    }
+    return 1 / (compliance(down[0], cols[0]->hold) + give);
 }
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
@@ -148,10 +275,20 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         auto reach = [&](const Column& c) { return std::max({c.radius, c.foot_radius, c.raft_size / std::numbers::sqrt2}); };
         return std::hypot(dx, dy) > reach(a) + reach(b) + 2 * w || std::max(dx, dy) > (a.raft_size + b.raft_size) / 2 + 2 * w;
     };
-    // The triangle W, P, Q tied at every level: its bars, or none if one fails.
+    const std::vector<ColumnMeeting> meets = column_meetings(chains, sc, stack, s);
+    const int n = static_cast<int>(chains.size());
+    // W's stiffness at its top, tied with P and Q (indices into chains, or
+    // helpers past them) at these levels, meets the rule.
+    auto nodes_stand = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
+                           const std::vector<double>& levels, double give, const std::array<int, 3>& ids) {
+        return tied_stiffness({&W, &P, &Q}, ids, levels, give, meets, n, sc, stack, s) >= s.min_stiffness;
+    };
+    // The triangle W, P, Q tied at every level: its bars, or none if one
+    // fails or its nodes would not stand.
     auto triangle = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
-                        const std::vector<double>& levels) -> std::vector<Bridge> {
+                        const std::vector<double>& levels, double give, const std::array<int, 3>& ids) -> std::vector<Bridge> {
         if (!bases_apart(W, P) || !bases_apart(W, Q) || !bases_apart(P, Q)) return {};
+        if (!nodes_stand(W, P, Q, levels, give, ids)) return {};
         std::vector<Bridge> out;
         for (double b : levels) {
             const double zc = bar_layers(b).front().first;
@@ -169,31 +306,71 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     for (int wi = 0; wi < weak_count; ++wi) {
         if (braced[wi]) continue;
         const PillarChain W = chains[wi];
-        if (W.hold - W.base < kBraceStep) continue;  // short: it stands by itself
         // With what stands on it too: a column under a bar end stands the
         // rule at the top of the bar's connectors only if it leaves them
         // their give (a capped foot beside a skirt can take that), judged
         // with a smaller margin (the give is the connectors' worst case).
         const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
         if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
-        std::vector<double> ties;
-        auto add_tie = [&](double want) {
+        auto add_tie = [&](std::vector<double>& ties, double want) {
             const double b = snap_down(want);
             if (b > W.base + 1 && !bar_layers(b).empty() && (ties.empty() || b > ties.back() + kEps)) ties.push_back(b);
         };
-        for (double want = W.base + kBraceStep; want <= W.top - 3.0; want += kBraceStep) add_tie(want);
-        if (ties.empty()) continue;
+        // Whether W, from a tie at `from` (its base: -inf), stands by itself
+        // up to z.
+        auto alone = [&](double from, double z) {
+            return 1 / chain_compliance(W, z, sc, stack, s, from) >= kGiveMargin * s.min_stiffness;
+        };
+        // The highest z up to `to` W stands by itself to from `from`.
+        auto stands_to = [&](double from, double to) {
+            double lo = from, hi = to;
+            for (int i = 0; i < 10; ++i) (alone(from, (lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
+            return lo;
+        };
+        // Tie levels, the fewest first: a tie only where W stops standing by
+        // itself (the node there stands at least as W does: METHOD sums its
+        // columns), and from there again; a tapered column is tied once near
+        // its top. Then every kBraceStep, or closer where the part between
+        // two ties would not stand by itself: a thin column (the last
+        // fallback, 1 mm across, 0.35 N/mm over 10 mm) every 5 mm or so.
+        std::vector<double> fewest, grid;
+        for (double from = W.base; !alone(from, W.top);) {
+            const double want = std::min(stands_to(from, W.top), W.top - 3.0);
+            const std::size_t before = fewest.size();
+            if (want > from + 1) add_tie(fewest, want);
+            if (fewest.size() == before) break;
+            from = fewest.back();
+        }
+        for (double from = W.base, next = W.base + kBraceStep;;) {
+            const double want = alone(from, next) ? next : stands_to(from, next);
+            if (want <= from + 1 || want > W.top - 3.0) break;
+            const std::size_t before = grid.size();
+            add_tie(grid, want);
+            if (grid.size() == before) break;
+            from = grid.back();
+            next = want == next ? next + kBraceStep : from + kBraceStep;
+        }
         // What stands above the top tie starts afresh there: where that part
         // alone would fall short, one more tie as high as ties go (a thin
-        // column's 12.8 mm above a tie at 10 mm: 1.82 N/mm).
-        std::vector<std::vector<double>> tries{ties};
-        if (1 / (chain_compliance(W, W.hold, sc, stack, s, ties.back()) + give) < kGiveMargin * s.min_stiffness) {
-            add_tie(W.top - 3.0);
-            if (ties.size() > tries.front().size()) tries.insert(tries.begin(), ties);
+        // column's 12.8 mm above a tie at 10 mm: 1.82 N/mm), tried first.
+        // The regular ties first, then the fewest (which only neighbours
+        // standing already make: a helper that tall costs more than the
+        // bars it saves).
+        std::vector<std::vector<double>> tries;
+        std::size_t helped = 0;  // tries[0, helped) may stand helpers up
+        for (std::vector<double>* ties : {&grid, &fewest}) {
+            if (ties->empty()) continue;
+            std::vector<double> higher = *ties;
+            if (1 / (chain_compliance(W, W.hold, sc, stack, s, ties->back()) + give) < kGiveMargin * s.min_stiffness)
+                add_tie(higher, W.top - 3.0);
+            for (const std::vector<double>* t : {&higher, ties})
+                if (std::find(tries.begin(), tries.end(), *t) == tries.end()) tries.push_back(*t);
+            if (ties == &grid) helped = tries.size();
         }
+        if (tries.empty()) continue;
         // The triangle that ties W at these levels: bars, the partners among
         // the corners, and the helpers it stands up; no bars if none does.
-        auto tie_up = [&](const std::vector<double>& levels)
+        auto tie_up = [&](const std::vector<double>& levels, int new_helpers)
             -> std::tuple<std::vector<Bridge>, std::vector<int>, std::vector<PillarChain>> {
             const double b_top = levels.back(), zc_top = bar_layers(b_top).front().first;
             const std::optional<At> a = at(W, b_top, zc_top);
@@ -210,9 +387,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             std::sort(partners.begin(), partners.end());
             std::vector<Bridge> bars;
             std::vector<int> corners;
-            for (std::size_t i = 0; i < partners.size() && bars.empty(); ++i)
+            for (std::size_t i = 0; new_helpers == 0 && i < partners.size() && bars.empty(); ++i)
                 for (std::size_t j = i + 1; j < partners.size() && bars.empty(); ++j) {
-                    bars = triangle(W, chains[partners[i].second], chains[partners[j].second], levels);
+                    const int pi = partners[i].second, pj = partners[j].second;
+                    bars = triangle(W, chains[pi], chains[pj], levels, give, {wi, pi, pj});
                     if (!bars.empty()) corners = {partners[i].second, partners[j].second};
                 }
             // Too few neighbours: a helper pillar up to the top tie (its top
@@ -248,6 +426,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             };
             auto drop_helpers = [&](std::size_t columns_before) { sc.columns.resize(columns_before); };
             for (std::size_t i = 0; bars.empty() && i <= partners.size() && i < 4; ++i) {
+                if ((i < partners.size() ? 1 : 2) != new_helpers) continue;
                 const std::size_t before = sc.columns.size();
                 for (int k = 0; k < 12 && bars.empty(); ++k)
                     for (double d : {10.0, 12.0}) {
@@ -263,7 +442,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                             const double sign = k == 0 ? 1.0 : -1.0, h = len * std::sqrt(3.0) / 2;
                             auto hq = helper(mx - sign * (p->y - a->y) / len * h, my + sign * (p->x - a->x) / len * h);
                             if (!hq) continue;
-                            bars = triangle(W, P, *hq, levels);
+                            bars = triangle(W, P, *hq, levels, give, {wi, partners[i].second, n});
                             if (!bars.empty()) {
                                 helpers.push_back(*hq);
                                 corners = {partners[i].second};
@@ -274,7 +453,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                             if (!h1) continue;
                             auto h2 = helper(a->x + d * std::cos(t + std::numbers::pi / 3), a->y + d * std::sin(t + std::numbers::pi / 3));
                             if (!h2) continue;
-                            bars = triangle(W, *h1, *h2, levels);
+                            bars = triangle(W, *h1, *h2, levels, give, {wi, n, n + 1});
                             if (!bars.empty()) helpers = {*h1, *h2};
                         }
                     }
@@ -285,10 +464,11 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         std::vector<Bridge> bars;
         std::vector<int> corners;
         std::vector<PillarChain> helpers;
-        for (const std::vector<double>& levels : tries) {
-            std::tie(bars, corners, helpers) = tie_up(levels);
-            if (!bars.empty()) break;
-        }
+        // Neighbours standing already first, at any levels; then one
+        // helper, then two: each costs a whole new pillar.
+        for (int new_helpers : {0, 1, 2})
+            for (std::size_t t = 0; t < (new_helpers ? helped : tries.size()); ++t)
+                if (bars.empty()) std::tie(bars, corners, helpers) = tie_up(tries[t], new_helpers);
         if (bars.empty()) continue;
         braced[wi] = 1;
         for (int c : corners) braced[c] = 1;

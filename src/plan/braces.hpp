@@ -6,6 +6,7 @@
 // curving model) is tied to two neighbours by bars in a triangle, every
 // kBraceStep of height: each part between ties then stands on its own short
 // length, a few N/mm for a plain 2 mm ring.
+#include <array>
 #include <vector>
 
 #include "gcode/settings.hpp"
@@ -31,9 +32,41 @@ std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
 
 // A pillar's compliance (mm/N) at height `top` over it, summed layer by
 // layer over the loops it prints (their radius as the toolpaths draw them),
-// above height `from` (where a brace ties it, what stands on it starts afresh).
+// above height `from` (where a brace ties it, what stands on it starts afresh)
+// and up to `to` (a part of the path down from higher up).
 double chain_compliance(const PillarChain& chain, double top, const Scaffold& scaffold,
-                        const layers::LayerStack& stack, const Settings& settings, double from = -1e300);
+                        const layers::LayerStack& stack, const Settings& settings, double from = -1e300,
+                        double to = 1e300);
+
+// Where two pillars meet, so that METHOD counts them as one column from
+// there up to the next node: a bar of the plan (not a brace) passing
+// through or resting on both (at the bar's height), or their loops
+// touching (at the first layer of each run of touching layers). Pillars
+// are indices into `chains`.
+struct ColumnMeeting {
+    double z;
+    int a, b;
+};
+std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chains, const Scaffold& scaffold,
+                                           const layers::LayerStack& stack, const Settings& settings);
+
+// Whether the pillars `ids` are distinct columns at a tie at b over a node
+// at lo (-inf: none): none met another between the two, directly or through
+// others. Ids at chain_count or more (helpers planned since) meet nothing.
+bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_count, const std::vector<int>& ids,
+                      double lo, double b);
+
+// The stiffness (N/mm) at the top of what cols[0] holds, with `give` more
+// in series, when cols[0..2] are tied at `levels` (ascending), as METHOD's
+// validator walks it: at a tie where the three are distinct columns and
+// each one's own k is at least a share (kBraceColumnShare) of the
+// strongest's, a node, on whose give (one over the sum of their k) each
+// part above starts afresh; else what stands on the tie follows the
+// stiffest of them down (a twig tied to a trunk rides on the trunk).
+double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
+                      const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
+                      int chain_count, const Scaffold& scaffold, const layers::LayerStack& stack,
+                      const Settings& settings);
 
 // Ties each pillar weaker than target_stiffness at the top of what it holds
 // to two neighbours (triangles whose angles are all 30 degrees or more), at

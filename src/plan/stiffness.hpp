@@ -34,6 +34,10 @@ inline constexpr double kStiffnessMargin = 1.25;
 // The margin over --min-stiffness a column keeps with its connectors' give
 // (the give is their worst case).
 inline constexpr double kGiveMargin = 1.1;
+// METHOD's brace: a column counts at a node only where its k is at least a
+// quarter of the strongest's; the planner asks a tenth more (a helper
+// pillar tied at 10, 20 and 30 mm beside a tapered column: 0.30).
+inline constexpr double kBraceColumnShare = 0.25 * 1.1;
 inline double target_stiffness(const Settings& s) { return s.min_stiffness * kStiffnessMargin; }
 
 }  // namespace scaffold::plan

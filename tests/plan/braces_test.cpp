@@ -90,13 +90,21 @@ TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedEveryTenMillimetres) {
         EXPECT_NEAR(std::hypot(b.x1 - b.x0, b.y1 - b.y0), 8.45, 1e-6);
         EXPECT_TRUE(std::abs(b.z - 10) < 1e-6 || std::abs(b.z - 20) < 1e-6 || std::abs(b.z - 30) < 1e-6) << b.z;
     }
-    // A forbidden bar (one the bar check failed) is not placed again: the
-    // columns are tied in another triangle (with a helper), without it.
+    // A forbidden bar (one the bar check failed) is not placed again. The
+    // columns are tied by the same triangle at the fewest levels instead:
+    // a plain 2 mm ring stands 2.2 N/mm (the rule with the planner's tenth)
+    // up to h where (h^3 / 3 - 5 h x 0.2^3 / 12) / 2303.22 = 1 / 2.2, h =
+    // 14.64 mm: tied at 14.6 (the layer below), then 14.64 higher, at 29.2;
+    // the 10.8 mm above stand 3 x 2303.22 / 10.8^3 = 5.5 N/mm. Two levels,
+    // six bars, no helper.
     plan::Scaffold again;
     again.columns = sc.columns;
-    EXPECT_GE(plan::add_braces(again, st, obs, s, {sc.bridges[0]}), 9);
-    for (const plan::Bridge& b : again.bridges)
+    EXPECT_EQ(plan::add_braces(again, st, obs, s, {sc.bridges[0]}), 6);
+    EXPECT_EQ(again.columns.size(), 3u);
+    for (const plan::Bridge& b : again.bridges) {
         EXPECT_FALSE(plan::near_forbidden({sc.bridges[0]}, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
+        EXPECT_TRUE(std::abs(b.z - 14.6) < 1e-6 || std::abs(b.z - 29.2) < 1e-6) << b.z;
+    }
 }
 
 // A column with no neighbour gets two helper columns up to its top tie,
@@ -143,24 +151,33 @@ TEST_F(BraceScene, AColumnThatLeavesItsConnectorsTooLittleIsBraced) {
     EXPECT_EQ(plan::add_braces(light, st, obs, s, {}), 0);
 }
 
-// What stands above the top tie starts afresh there. A thin 22 mm column
-// (outer radius 0.6 mm: centre line 0.375, I = pi 0.375^3 0.45 = 0.074551
-// mm^4, E I = 260.93) tied every 10 mm only at 10 would leave 12 mm above:
-// (12^3 / 3 - 60 x 0.2^3 / 12) / 260.93 = 575.96 / 260.93 = 2.2073 mm/N,
-// 0.453 N/mm, under 1.1 x 2. So it is tied at 19 mm (its top less 3) too:
-// two levels of three bars, the remaining 3 mm some 29 N/mm.
-TEST_F(BraceScene, AThinColumnIsTiedNearItsTopWhereThePartAboveWouldBend) {
+// Each part between two ties stands by itself, and what stands above the
+// top tie starts afresh there. A thin 22 mm column (outer radius 0.6 mm:
+// centre line 0.375, I = pi 0.375^3 0.45 = 0.074551 mm^4, E I = 260.93)
+// stands 2.2 N/mm up to 7.0 mm: (7^3 / 3 - 35 x 0.2^3 / 12) / 260.93 =
+// 0.43809 mm/N, 2.283 N/mm (at 7.2: 2.098). Tied every 10 mm, its lowest
+// 10 mm would stand 0.78 N/mm. So it is tied at 7.0 and 14.0; the 8 mm
+// above 14 would stand (8^3 / 3 - 40 x 0.2^3 / 12) / 260.93 = 0.65397
+// mm/N, 1.53 N/mm (above a tie at 10, the 12 mm would give (12^3 / 3 - 60 x
+// 0.2^3 / 12) / 260.93 = 2.2073 mm/N), so it is tied at 19 mm (its top less
+// 3) too: three levels of three bars, the remaining 3 mm some 29 N/mm.
+TEST_F(BraceScene, AThinColumnIsTiedWhereItsPartsStandAndNearItsTop) {
     plan::Column c = plain(40, 40, 22);
     c.radius = 0.6;
     sc.columns.push_back(c);
-    EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(sc)[0], 22, sc, st, s, 10), 2.2073, 1e-4);
-    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 6);
-    int at10 = 0, at19 = 0;
+    const auto thin = plan::pillar_chains(sc);
+    EXPECT_NEAR(plan::chain_compliance(thin[0], 22, sc, st, s, 10), 2.2073, 1e-4);
+    EXPECT_NEAR(plan::chain_compliance(thin[0], 7, sc, st, s), 0.43809, 1e-5);
+    EXPECT_NEAR(plan::chain_compliance(thin[0], 22, sc, st, s, 14), 0.65397, 1e-5);
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 9);
+    int at7 = 0, at14 = 0, at19 = 0;
     for (const plan::Bridge& b : sc.bridges) {
-        at10 += std::abs(b.z - 10) < 1e-6;
+        at7 += std::abs(b.z - 7) < 1e-6;
+        at14 += std::abs(b.z - 14) < 1e-6;
         at19 += std::abs(b.z - 19) < 1e-6;
     }
-    EXPECT_EQ(at10, 3);
+    EXPECT_EQ(at7, 3);
+    EXPECT_EQ(at14, 3);
     EXPECT_EQ(at19, 3);
     // A 2 mm column leaves 575.96 / 2303.22 = 0.25007 mm/N above 10 mm
     // (4.0 N/mm): tied at 10 alone (with the 22 mm from the bed far weaker).
@@ -168,4 +185,43 @@ TEST_F(BraceScene, AThinColumnIsTiedNearItsTopWhereThePartAboveWouldBend) {
     wide.columns.push_back(plain(40, 40, 22));
     EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(wide)[0], 22, wide, st, s, 10), 0.25007, 1e-5);
     EXPECT_EQ(plan::add_braces(wide, st, obs, s, {}), 3);
+}
+
+// METHOD's brace, walked as the validator walks it. Three plain 2 mm
+// columns 40 mm tall, 10 mm apart in a triangle, tied at 20 mm: each
+// stands (20^3 / 3 - 100 x 0.2^3 / 12) / 2303.22 = 1.157770 mm/N there,
+// 0.863730 N/mm; the node 3 x 0.863730 = 2.591189 N/mm, give 0.385923
+// mm/N; the top bends the same 1.157770 above it: 1 / 1.543693 = 0.6478
+// N/mm (METHOD: "about 0.7", against 0.108 alone).
+TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATwig) {
+    sc.columns.push_back(plain(30, 30, 40));
+    sc.columns.push_back(plain(40, 30, 40));
+    sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
+    auto stiffness = [&](const plan::Scaffold& scene) {
+        const auto chains = plan::pillar_chains(scene);
+        const auto meets = plan::column_meetings(chains, scene, st, s);
+        return plan::tied_stiffness({&chains[0], &chains[1], &chains[2]}, {0, 1, 2}, {20.0}, 0.0, meets,
+                                    static_cast<int>(chains.size()), scene, st, s);
+    };
+    EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(sc)[0], 20, sc, st, s), 1.157770, 1e-6);
+    EXPECT_NEAR(stiffness(sc), 0.64779, 1e-4);
+    // Two of them carry one bar of the plan at 5 mm: one column from there
+    // (METHOD), so the tie makes no node; the top follows the stiffest
+    // path down, the column's own: (40^3 / 3 - 200 x 0.2^3 / 12) / 2303.22
+    // = 9.26212 mm/N, 0.10797 N/mm.
+    plan::Scaffold joined = sc;
+    joined.bridges.push_back({40, 30, 35, 30 + 10 * std::sqrt(3.0) / 2, 5.0, {}, 0, 0, false});
+    const auto meets = plan::column_meetings(plan::pillar_chains(joined), joined, st, s);
+    ASSERT_EQ(meets.size(), 1u);
+    EXPECT_EQ(meets[0].a, 1);
+    EXPECT_EQ(meets[0].b, 2);
+    EXPECT_DOUBLE_EQ(meets[0].z, 5.0);
+    EXPECT_FALSE(plan::distinct_columns(meets, 3, {0, 1, 2}, -1e300, 20));
+    EXPECT_TRUE(plan::distinct_columns(meets, 3, {0, 1, 2}, 10, 20));  // a node at 10 made them apart
+    EXPECT_NEAR(stiffness(joined), 0.10797, 1e-4);
+    // A twig: one of them 1.2 mm across (E I = 260.93) stands 0.0978 N/mm
+    // at 20, under a quarter (with the planner's tenth: 0.275) of 0.8637.
+    plan::Scaffold twig = sc;
+    twig.columns[1].radius = 0.6;
+    EXPECT_NEAR(stiffness(twig), 0.10797, 1e-4);
 }
