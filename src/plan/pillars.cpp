@@ -1,6 +1,7 @@
 #include "plan/pillars.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -27,8 +28,8 @@ LoopShape loop_shape(double r, double width) {
 double column_radius_at(const Column& c, double z, const Settings& s) {
     double r = c.radius + (c.taper > 0 && z < c.hold_z ? c.taper * (c.hold_z - z) : 0.0);
     if (c.max_radius > 0) r = std::max(c.radius, std::min(r, c.max_radius));
-    if (c.contact_z > 0 && s.tip_length > 0) {
-        double t = (c.contact_z - z) / s.tip_length;  // 0 at the contact, 1 where the tip starts
+    if (const double neck = c.neck > 0 ? c.neck : s.tip_length; c.contact_z > 0 && neck > 0) {
+        double t = (c.contact_z - z) / neck;  // 0 at the contact, 1 where the tip starts
         if (t < 1) r = s.tip_radius + (c.radius - s.tip_radius) * std::clamp(t, 0.0, 1.0);
     }
     if (c.base == Base::Bed && c.foot_radius > r && s.foot_height > 0 && z < s.foot_height) {
@@ -566,6 +567,15 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
         if ((pass && places == TipPlaces::Beside) || (!pass && places == TipPlaces::UnderSheet)) continue;
         under_sheet = pass;
         if (auto chain = search(proto)) return chain;
+        // A longer neck reaches into a crotch of the model (an elephant's leg
+        // meeting its belly) where the full column does not, and stays wide
+        // below it, where its width pays: before the thin columns.
+        if (top == Top::Contact && proto.contact_z > 0 && s.tip_length > 0)
+            for (double times : {2.0, 3.0}) {
+                Column necked = proto;
+                necked.neck = times * s.tip_length;
+                if (auto chain = search(necked)) return chain;
+            }
         // A short, thin pillar lands on a small or sloping top of the model
         // (an ear over a head) and fits narrow gaps where the normal one
         // does not; last, the thinnest column the tip allows, in a slot

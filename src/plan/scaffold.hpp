@@ -21,6 +21,7 @@ struct Column {
     Top top = Top::Contact;
     int point = -1;                 // index of the support point it holds, or -1
     double contact_z = 0;           // z of the model contact this column tapers to (0 = none)
+    double neck = 0;                // length of that taper, mm (0: the settings' tip_length)
     double foot_radius = 0;         // flared foot on the bed (0 = none)
     double raft_size = 0;           // square raft under it on the first layer (0 = none)
     // Height from which it leans (0 = from z0): a connector's first loop on

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "layers/layer_stack.hpp"
+#include "plan/braces.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
 #include "plan/stiffness.hpp"
@@ -427,4 +428,59 @@ TEST(Obstacles, ANarrowedFootWidensOnlyAsAThinLayerHolds) {
     EXPECT_GT(second, bottom);  // it does widen
     EXPECT_LE(second - bottom, plan::loop_shift_limit(0.08, s) + 1e-9);
     EXPECT_GE(radius_at(2.68), second - 1e-9);
+}
+
+// A point in a crotch of the model (an elephant's leg meeting its belly),
+// 25 mm up: solid model either side of it closes in towards its top, its
+// inner edges 1.0 + 0.25 dz mm from the point, dz below the layer under
+// the point (up to 4 mm), and open below. The plain tip (0.5 mm at the
+// contact, the full 1 mm 2 mm lower, with the 0.5 mm gap: 1.5 mm of room
+// asked where 1.5 less the raster's edge is left), the thinner columns
+// and every place within 3 mm find no way down (the build before this
+// neck planned nothing here). A neck twice as long (4 mm) fits, and below
+// the walls the column is as wide as the rule asks.
+TEST(PlanPillars, ALongerNeckReachesIntoACrotchAndTheColumnStaysWideBelow) {
+    Settings s;
+    constexpr int kTop = 125;  // the point's layer, z 25.2
+    const layers::LayerStack st = test::stack_of(
+        kTop + 1,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            const double dz = 0.2 * (kTop - 1 - i);  // below the layer under the point
+            if (i == kTop) test::bead(l, 46, 50, 54, 50);
+            if (i < kTop && dz <= 4.0) {
+                // Solid either side, beads 0.45 mm apart from the inner edge out.
+                for (double e = 1.0 + 0.25 * dz + 0.225; e < 10; e += 0.45) {
+                    test::bead(l, 50 - e, 40, 50 - e, 60);
+                    test::bead(l, 50 + e, 40, 50 + e, 60);
+                }
+            }
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(50, 50, kTop, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain);
+    ASSERT_FALSE(chain->empty());
+    const plan::Column& top = chain->back();
+    EXPECT_EQ(chain->front().base, plan::Base::Bed);
+    EXPECT_GT(top.neck, s.tip_length);
+    EXPECT_DOUBLE_EQ(top.radius, s.pillar_radius);
+    EXPECT_GT(top.taper, 0);
+    // Clear of the walls on every layer they stand on.
+    for (const plan::Column& c : *chain)
+        for (int l = 0; l < kTop; ++l) {
+            const double z = st.layers[l].z;
+            if (z <= c.z0 + 1e-6 || z > c.z1 + 1e-6) continue;
+            double x, y;
+            plan::column_centre_at(c, z, x, y);
+            EXPECT_TRUE(obs.disc_clear(l, x, y, plan::column_radius_at(c, z, s) + plan::clearance_at(c, z, s)))
+                << "z " << z;
+        }
+    // Stiff as the rule asks: at least 2 N/mm at its top, where the thin
+    // fallback (1 mm across, 12.6 mm) would stand about 0.2.
+    plan::Scaffold sc;
+    sc.columns = *chain;
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 1u);
+    EXPECT_GE(1 / plan::chain_compliance(chains[0], top.z1, sc, st, s), s.min_stiffness);
 }
