@@ -288,7 +288,6 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     auto triangle = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
                         const std::vector<double>& levels, double give, const std::array<int, 3>& ids) -> std::vector<Bridge> {
         if (!bases_apart(W, P) || !bases_apart(W, Q) || !bases_apart(P, Q)) return {};
-        if (!nodes_stand(W, P, Q, levels, give, ids)) return {};
         std::vector<Bridge> out;
         for (double b : levels) {
             const double zc = bar_layers(b).front().first;
@@ -298,6 +297,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             if (!ap || !aq || !pq) return {};
             out.insert(out.end(), {*ap, *aq, *pq});
         }
+        // Last: the walk sums every layer of the three pillars at each tie.
+        if (!nodes_stand(W, P, Q, levels, give, ids)) return {};
         return out;
     };
     int added = 0;

@@ -1,7 +1,6 @@
 #include "plan/pillars.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <cmath>
 #include <limits>
