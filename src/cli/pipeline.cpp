@@ -281,6 +281,10 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     if (replay.offers_replayed > 0)
         log.debug("plans made again resumed their bridge search: {} offers not made again", replay.offers_replayed);
     if (log.should_log(spdlog::level::trace)) {
+        for (std::size_t i = 0; i < points.points.size(); ++i) {
+            const overhang::SupportPoint& p = points.points[i];
+            log.trace("point {} ({:.2f}, {:.2f}) under the layer at z {:.2f}", i, p.x, p.y, stack.layers[p.layer].z);
+        }
         for (const plan::Column& c : scaffold.columns)
             log.trace("column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}, taper {:.4f} below z {:.2f}, "
                       "cap {:.2f}, base {}, point {}",

@@ -209,14 +209,17 @@ constexpr int kSettleDirections = 16;
 // --min-overhang-area 0: 0.15-0.36 mm^2 each). Where a bottom loop a
 // little aside (still clear of the model on its layer, the loop above still
 // resting on it) is held all round by the walk, it goes there (true).
-// Otherwise it stays as it is: whether a column stands at all (and so the
-// bar search's answers) is the vertex test's. Asked with the column's final
-// radius: a column on the model is narrowed after its way down is found.
-bool settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBase& base,
+// Otherwise it is Settle::Unheld: a tip then looks further (the next place
+// around its point); a bar's end stays as it is, since whether a bar's
+// column stands (the bar search's answers) is the vertex test's. Asked with
+// the column's final radius: a column on the model is narrowed after its way
+// down is found.
+enum class Settle { Held, Moved, Unheld };
+Settle settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBase& base,
                      const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
     const int back_layer = base.back_layer, model_layer = base.model_layer;
     const double reach = base.reach;
-    if (path.size() < 2 || back_layer < 0) return false;  // a column's top stays under what it holds
+    if (path.size() < 2 || back_layer < 0) return Settle::Held;  // a column's top stays under what it holds
     Step& back = path.back();
     const Step& up = path[path.size() - 2];
     const double r = step_radius(proto, back, s);
@@ -225,18 +228,24 @@ bool settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBa
     // within reach is a run between held ends, which must cross the edge,
     // where with that corner out of reach it was a short dangling end (a
     // loop settled by the planner's own reach alone failed the validator's,
-    // larger one: figure.cura413, 0.50 mm^2). So held at the planner's
-    // reach, the validator's, and the validator's a cell further out.
+    // larger one: figure.cura413, 0.50 mm^2). The validator measures its
+    // reach from the beads' edges, this raster from cells, so where its
+    // reach falls is known to a cell or so: held at the planner's reach and
+    // at every quarter cell from the validator's less half a cell to a cell
+    // and a half beyond (at three reaches only, a loop on bunny.slic3r13
+    // passed here and left 0.20 mm^2 of a side unheld to the validator).
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     const double h = stack.layers[back_layer].height;
-    const std::array<double, 3> reaches{reach, h * slope + s.resolution / 2, h * slope + 1.5 * s.resolution};
+    std::array<double, 10> reaches{reach};
+    for (std::size_t k = 1; k < reaches.size(); ++k)
+        reaches[k] = h * slope + s.resolution * static_cast<double>(k - 1) / 4;
     auto held = [&](double x, double y) {
         if (!loop_rests(obs, model_layer, x, y, r, s.support_width, reach)) return false;
         for (double rr : reaches)
             if (!sides_held(obs, model_layer, x, y, shape, rr, s.resolution, s.marked_bridge_limit)) return false;
         return true;
     };
-    if (held(back.x, back.y)) return false;
+    if (held(back.x, back.y)) return Settle::Held;
     const double need = r + clearance_at(proto, back.z, s) + s.resolution / 2;
     const double rc_up = loop_shape(step_radius(proto, up, s), s.support_width).centre_radius;
     const double limit = loop_shift_limit(std::min(stack.layers[back_layer].height, up.z - back.z), s);
@@ -248,9 +257,9 @@ bool settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBa
             if (!obs.disc_clear(back_layer, x, y, need) || !held(x, y)) continue;
             back.x = x;
             back.y = y;
-            return true;
+            return Settle::Moved;
         }
-    return false;
+    return Settle::Unheld;
 }
 
 // Walks the column down from its top layer, stepping aside where the model
@@ -550,10 +559,18 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                     narrowed.taper = std::min(c.taper, stiff * taper_for(c.radius, c.hold_z - chain.front().z0,
                                                                          target_stiffness(s), give, s.support_width,
                                                                          s.modulus));
-                if (fit_base && c.base == Base::Model && settle_on_model(narrowed, path, base, stack, obs, s))
-                    chain = columns_of(c, path);
+                Settle settled = Settle::Held;
+                if (fit_base && c.base == Base::Model) {
+                    settled = settle_on_model(narrowed, path, base, stack, obs, s);
+                    if (settled == Settle::Moved) chain = columns_of(c, path);
+                }
                 if (narrow)
                     for (Column& piece : chain) piece.taper = narrowed.taper;
+                // A tip whose bottom loop the validator would not hold
+                // anywhere near looks on: around its point, then in the
+                // next shapes (bunny.slic3r13 at --min-overhang-area 0: a
+                // 1 mm loop half over air, 0.20 mm^2).
+                if (settled == Settle::Unheld && top == Top::Contact) continue;
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
