@@ -65,7 +65,9 @@ std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, co
         points.points.insert(points.points.end(), more.points.begin(), more.points.end());
         std::vector<int> which(points.points.size() - first);
         for (std::size_t i = 0; i < which.size(); ++i) which[i] = static_cast<int>(first + i);
-        add_pillars(scaffold, points, which, stack, obs, s, steer);
+        // Only tips under the sheet: one beside it holds none of it
+        // (METHOD's rule (c)), and the round would only stand it up again.
+        add_pillars(scaffold, points, which, stack, obs, s, steer, false);
         // Keep the new points that got a pillar, renumbered in order.
         std::vector<int> index(points.points.size(), -1);
         std::size_t kept = first;

@@ -82,20 +82,21 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
 
 std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
                                                  const layers::LayerStack& stack, const Obstacles& obs,
-                                                 const Settings& s, const Trunks* trunks) {
+                                                 const Settings& s, const Trunks* trunks, bool beside) {
     if (auto chain = drop_pillar(x, y, overhang_layer, Top::Contact, stack, obs, s, trunks, TipPlaces::UnderSheet))
         return chain;
     if (auto chain = lean_in(x, y, overhang_layer, stack, obs, s, trunks)) return chain;
+    if (!beside) return std::nullopt;
     return drop_pillar(x, y, overhang_layer, Top::Contact, stack, obs, s, trunks, TipPlaces::Beside);
 }
 
 void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, const std::vector<int>& which,
-                 const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer) {
+                 const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer, bool beside) {
     Trunks trunks(stack, steer);
     trunks.add(scaffold.columns, stack, s);
     for (int i : which) {
         const overhang::SupportPoint& p = points.points[i];
-        auto chain = support_point(p.x, p.y, p.layer, stack, obs, s, &trunks);
+        auto chain = support_point(p.x, p.y, p.layer, stack, obs, s, &trunks, beside);
         if (!chain) {
             scaffold.dropped_points.push_back(i);
             continue;

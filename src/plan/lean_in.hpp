@@ -23,17 +23,19 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
 
 // The scaffold's support of a point that no bridge carries: a pillar whose
 // tip lies under the sheet (drop_pillar), else one leaning in (lean_in),
-// else a pillar whose tip stands beside the sheet within reach.
+// else (with `beside`) a pillar whose tip stands beside the sheet within
+// reach.
 std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
                                                  const layers::LayerStack& stack, const Obstacles& obstacles,
-                                                 const Settings& settings, const Trunks* trunks);
+                                                 const Settings& settings, const Trunks* trunks, bool beside = true);
 
 // support_point under each of points.points[which], in that order, added to
 // the plan with the point's index; each stands on the plan's columns where
 // it meets them (branching within `steer` mm; 0: straight down only).
 // Points that get none are added to dropped_points (sorted).
 void add_pillars(Scaffold& scaffold, const overhang::SupportPoints& points, const std::vector<int>& which,
-                 const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings, double steer);
+                 const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings, double steer,
+                 bool beside = true);
 
 // Farthest a leaning column comes from (mm, horizontally).
 inline constexpr double kLeanInReach = 8.0;
