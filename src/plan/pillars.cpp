@@ -485,7 +485,8 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                                                       const layers::LayerStack& stack, const Obstacles& obs,
                                                       const Settings& s, const Trunks* trunks, TipPlaces places,
                                                       bool fit_base, double hold, double give, double stiff,
-                                                      bool thin_above) {
+                                                      bool thin_above,
+                                                      std::optional<std::vector<Column>>* unheld = nullptr) {
     const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
@@ -569,8 +570,12 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                 // A tip whose bottom loop the validator would not hold
                 // anywhere near looks on: around its point, then in the
                 // next shapes (bunny.slic3r13 at --min-overhang-area 0: a
-                // 1 mm loop half over air, 0.20 mm^2).
-                if (settled == Settle::Unheld && top == Top::Contact) continue;
+                // 1 mm loop half over air, 0.20 mm^2), the first such
+                // column kept in `unheld`.
+                if (settled == Settle::Unheld && top == Top::Contact) {
+                    if (unheld && !*unheld) *unheld = chain;
+                    continue;
+                }
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
@@ -595,8 +600,10 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
         // A short, thin pillar lands on a small or sloping top of the model
         // (an ear over a head) and fits narrow gaps where the normal one
         // does not; last, the thinnest column the tip allows, in a slot
-        // beside a wall.
-        if (top == Top::Contact && !s.buildplate_only) {
+        // beside a wall. Not where a wider one was found whose bottom loop
+        // leaves a sliver unheld: a thin column stands far less (the
+        // shuttle at --min-overhang-area 0: 0.72 -> 0.05 N/mm for 0.17 mm^2).
+        if (top == Top::Contact && !s.buildplate_only && !(unheld && *unheld)) {
             // A thinner top needs more taper for the same stiffness.
             auto retaper = [&](Column& c) {
                 if (proto.taper > 0)
@@ -634,11 +641,15 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         // Under a bar end that holds more above (where the widened column
         // has no neck), a neck may be all that fits at the top: a widened
         // column with a neck before the plain one.
+        // A column whose bottom loop only the validator's walk leaves a
+        // sliver of: kept while the other shapes are tried, taken if none
+        // stands held.
+        std::optional<std::vector<Column>> unheld;
         const int below = stack.layers[overhang_layer].below;
         const bool neck_too = !thin_above && top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6;
         auto shaped = [&](double stiff, bool neck) {
             return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give,
-                                      stiff, neck);
+                                      stiff, neck, &unheld);
         };
         // Whether a column meets the rule with what stands on it.
         auto stands = [&](const std::vector<Column>& c) {
@@ -676,8 +687,16 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
             }
             if (!neck_too) break;
         }
+        if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold,
+                                            give, -1.0, thin_above, &unheld))
+            return chain;
+        return unheld;
     }
-    return drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give, -1.0, thin_above);
+    std::optional<std::vector<Column>> unheld;
+    if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give,
+                                        -1.0, thin_above, &unheld))
+        return chain;
+    return unheld;
 }
 
 void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {
