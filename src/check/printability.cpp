@@ -25,7 +25,7 @@ namespace scaffold::check {
 namespace {
 
 using layers::kZEps;
-constexpr double kStraightDeg = 10;
+using layers::kStraightDeg;
 
 using gcode::fixed;
 

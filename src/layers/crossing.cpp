@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace scaffold::layers {
 
@@ -75,6 +76,74 @@ void hold_runs(std::vector<PieceSample>& p, const BitGrid& footprint, double max
             for (std::size_t k = i; k < j; ++k) p[k].held = true;
         i = j;
     }
+}
+
+bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<BeadBeneath>& beads, double reach,
+               double cell, double max_span, double dangling_end) {
+    if (pts.size() < 2) return true;
+    // The grid: the path and what can reach it (the crossing test looks up
+    // to 3 mm from a sample), on the validator's lattice.
+    constexpr double kMargin = 4.0;
+    float lo_x = pts[0][0], hi_x = lo_x, lo_y = pts[0][1], hi_y = lo_y;
+    for (const auto& q : pts) {
+        lo_x = std::min(lo_x, q[0]), hi_x = std::max(hi_x, q[0]);
+        lo_y = std::min(lo_y, q[1]), hi_y = std::max(hi_y, q[1]);
+    }
+    const double x0 = std::floor((lo_x - kMargin) / cell) * cell, x1 = hi_x + kMargin;
+    const double y0 = std::floor((lo_y - kMargin) / cell) * cell, y1 = hi_y + kMargin;
+    BitGrid footprint(x0, y0, x1, y1, cell), held = footprint;
+    for (const BeadBeneath& d : beads) {
+        if (std::max(d.x0, d.x1) < x0 - reach - d.width || std::min(d.x0, d.x1) > x1 + reach + d.width ||
+            std::max(d.y0, d.y1) < y0 - reach - d.width || std::min(d.y0, d.y1) > y1 + reach + d.width)
+            continue;
+        if (d.rim) footprint.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
+        held.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width + 2 * reach);
+    }
+    // Pieces, each straight within kStraightDeg of its first move; every
+    // piece after the first starts at a corner of the path.
+    const double cos_straight = std::cos(kStraightDeg * std::numbers::pi / 180);
+    std::vector<std::vector<PieceSample>> pieces;
+    double ux = 0, uy = 0;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+        Segment sg;
+        sg.x0 = pts[k][0], sg.y0 = pts[k][1], sg.x1 = pts[k + 1][0], sg.y1 = pts[k + 1][1];
+        const double dx = sg.x1 - sg.x0, dy = sg.y1 - sg.y0, len = std::hypot(dx, dy);
+        const bool joins = k > 0 && len > 0 && (dx * ux + dy * uy) / len >= cos_straight;
+        if (!joins) {
+            pieces.emplace_back();
+            ux = len > 0 ? dx / len : 0;
+            uy = len > 0 ? dy / len : 0;
+        }
+        sample_segment(sg, static_cast<std::uint32_t>(k), held, cell, pieces.back());
+    }
+    // (a), then the holes the beads beneath enclose.
+    BitGrid seeds = footprint;
+    seeds.clear();
+    bool any_unheld = false;
+    for (const auto& piece : pieces)
+        for (const PieceSample& q : piece)
+            if (!q.held) seeds.set(seeds.col(q.x), seeds.row(q.y)), any_unheld = true;
+    if (!any_unheld) return true;
+    const BitGrid enclosed = footprint.enclosed(seeds);
+    for (auto& piece : pieces)
+        for (PieceSample& q : piece)
+            if (!q.held && enclosed.get(enclosed.col(q.x), enclosed.row(q.y))) q.held = true;
+    // (b): corners through the piece beside, then runs and dangling ends.
+    std::vector<std::pair<bool, bool>> joint(pieces.size(), {false, false});
+    for (std::size_t q = 1; q < pieces.size(); ++q) {
+        joint[q].first = held_near_end(pieces[q - 1], true, dangling_end);
+        joint[q - 1].second = held_near_end(pieces[q], false, dangling_end);
+    }
+    for (std::size_t q = 0; q < pieces.size(); ++q) {
+        if (joint[q].first) pieces[q].front().held = true;
+        if (joint[q].second) pieces[q].back().held = true;
+    }
+    for (auto& piece : pieces) {
+        hold_runs(piece, footprint, max_span, dangling_end);
+        for (const PieceSample& q : piece)
+            if (!q.held) return false;
+    }
+    return true;
 }
 
 }  // namespace scaffold::layers

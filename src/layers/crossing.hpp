@@ -12,6 +12,8 @@
 // call it. (toolpath/bar_check, the planner's check of its bars, still
 // walks a bar its own way.)
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -20,6 +22,9 @@
 
 namespace scaffold::layers {
 
+// Consecutive moves of one path turning by less than this from the piece's
+// first move make one straight piece (METHOD.md's rule (b)).
+inline constexpr double kStraightDeg = 10;
 // How far a held end's test walks into the run (METHOD.md).
 inline constexpr double kCrossingWalk = 1.0;
 // A bead's unheld end this short is held (METHOD's rule (b)).
@@ -87,5 +92,28 @@ bool held_near_end(const std::vector<PieceSample>& p, bool at_end, double reach 
 // left unheld are the piece's overhang.
 void hold_runs(std::vector<PieceSample>& p, const BitGrid& footprint, double max_span,
                double dangling_end = kDanglingEnd);
+
+// A coordinate as the validator reads it back: written with 3 decimals
+// (splice), parsed, stored as a float (Segment).
+inline float as_written(double v) { return static_cast<float>(std::round(v * 1000) / 1000); }
+
+// A bead beneath a path, as the validator draws it: into the footprint
+// (`rim`: not a skirt loop, which holds what lies on it but encloses no
+// hole) and, grown by the reach, into what rule (a) holds.
+struct BeadBeneath {
+    float x0, y0, x1, y1, width;
+    bool rim;
+};
+
+// Whether every sample of a path of consecutive moves (its points as the
+// validator reads them back: `pts`, floats) is held over `beads` by METHOD's
+// rules (a) and (b) as the validator walks it (check/printability): rule
+// (a) on its lattice (make_grid's multiples of the cell), straight pieces
+// within kStraightDeg of their first move, holes the beads enclose, a
+// corner held where the piece before or after it is held within a dangling
+// end of it (not at the path's first point), then runs across gaps of at
+// most `max_span` and dangling ends. Rule (c) is not asked.
+bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<BeadBeneath>& beads, double reach,
+               double cell, double max_span, double dangling_end = kDanglingEnd);
 
 }  // namespace scaffold::layers

@@ -106,9 +106,7 @@ std::vector<SupportPoint> cover_region(const layers::BitGrid& g, const std::vect
     return pts;
 }
 
-// Consecutive moves of one extrusion path turning by less than this make
-// one straight piece, as in METHOD.md's rule (b) and scaffold-check.
-constexpr double kStraightDeg = 10;
+using layers::kStraightDeg;  // one straight piece, as in METHOD.md's rule (b) and scaffold-check
 
 // Does segment b continue segment a on one path, within 10 deg of the
 // piece's first segment? (Against the first, not the one before: a finely

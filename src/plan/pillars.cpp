@@ -24,6 +24,17 @@ LoopShape loop_shape(double r, double width) {
     return shape;
 }
 
+std::vector<std::array<double, 2>> loop_vertices(double cx, double cy, double r, double width) {
+    const LoopShape shape = loop_shape(r, width);
+    std::vector<std::array<double, 2>> pts;
+    pts.reserve(static_cast<std::size_t>(shape.sides) + 1);
+    for (int k = 0; k <= shape.sides; ++k) {
+        const double a = 2 * std::numbers::pi * (k % shape.sides) / shape.sides;
+        pts.push_back({cx + shape.centre_radius * std::cos(a), cy + shape.centre_radius * std::sin(a)});
+    }
+    return pts;
+}
+
 double column_radius_at(const Column& c, double z, const Settings& s) {
     double r = c.radius + (c.taper > 0 && z < c.hold_z ? c.taper * (c.hold_z - z) : 0.0);
     if (c.max_radius > 0) r = std::max(c.radius, std::min(r, c.max_radius));
@@ -47,44 +58,6 @@ bool loop_held(const Obstacles& obs, int layer, double x, double y, double rc, d
     for (int k = 0; k < 16; ++k) {
         double a = k * std::numbers::pi / 8;
         if (obs.disc_clear(layer, x + rc * std::cos(a), y + rc * std::sin(a), reach)) return false;
-    }
-    return true;
-}
-
-// The validator's own walk of a loop's sides (check/printability), which
-// the vertex test below only approximates: each side a straight piece
-// sampled every `step`, held by rule (a) within `reach` of the model; a
-// side's end held through the corner where the side beside it is held
-// within a dangling end of it (not at the first vertex, where the path
-// starts and ends); then rule (b)'s runs across the model's footprint
-// (layers::hold_runs).
-bool sides_held(const Obstacles& obs, int layer, double x, double y, const LoopShape& shape, double reach,
-                double step, double span) {
-    const int n = shape.sides;
-    const double rc = shape.centre_radius;
-    std::vector<std::vector<layers::PieceSample>> pieces(static_cast<std::size_t>(n));
-    for (int k = 0; k < n; ++k) {
-        const double a0 = 2 * std::numbers::pi * k / n, a1 = 2 * std::numbers::pi * ((k + 1) % n) / n;
-        const double x0 = x + rc * std::cos(a0), y0 = y + rc * std::sin(a0);
-        const double x1 = x + rc * std::cos(a1), y1 = y + rc * std::sin(a1);
-        const double len = std::hypot(x1 - x0, y1 - y0);
-        const int m = std::max(1, static_cast<int>(std::ceil(len / step)));
-        for (int i = 0; i <= m; ++i) {
-            const double t = static_cast<double>(i) / m, px = x0 + (x1 - x0) * t, py = y0 + (y1 - y0) * t;
-            pieces[static_cast<std::size_t>(k)].push_back({px, py, len * t, 0, !obs.disc_clear(layer, px, py, reach)});
-        }
-    }
-    std::vector<std::pair<bool, bool>> joint(static_cast<std::size_t>(n), {false, false});
-    for (std::size_t q = 1; q < pieces.size(); ++q) {
-        joint[q].first = layers::held_near_end(pieces[q - 1], true);
-        joint[q - 1].second = layers::held_near_end(pieces[q], false);
-    }
-    for (std::size_t q = 0; q < pieces.size(); ++q) {
-        if (joint[q].first) pieces[q].front().held = true;
-        if (joint[q].second) pieces[q].back().held = true;
-        layers::hold_runs(pieces[q], obs.footprint(layer), span);
-        for (const layers::PieceSample& p : pieces[q])
-            if (!p.held) return false;
     }
     return true;
 }
@@ -226,24 +199,25 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
     const LoopShape shape = loop_shape(r, s.support_width);
     // The walk is not monotonic in the reach: a side whose far corner comes
     // within reach is a run between held ends, which must cross the edge,
-    // where with that corner out of reach it was a short dangling end (a
-    // loop settled by the planner's own reach alone failed the validator's,
-    // larger one: figure.cura413, 0.50 mm^2). The validator measures its
-    // reach from the beads' edges, this raster from cells, so where its
-    // reach falls is known to a cell or so: held at the planner's reach and
-    // at every quarter cell from the validator's less half a cell to a cell
-    // and a half beyond (at three reaches only, a loop on bunny.slic3r13
-    // passed here and left 0.20 mm^2 of a side unheld to the validator).
+    // where with that corner out of reach it was a short dangling end. So
+    // the loop is walked exactly as the validator will walk it: its vertices
+    // as written, the beads beneath drawn on the validator's lattice, from
+    // their edges (at three reaches about the validator's on this raster, a
+    // tip's loop on bunny.slic3r13 passed and left 0.20 mm^2 of a side
+    // unheld: held at both ends, not in the middle, a run along the edge).
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-    const double h = stack.layers[back_layer].height;
-    std::array<double, 10> reaches{reach};
-    for (std::size_t k = 1; k < reaches.size(); ++k)
-        reaches[k] = h * slope + s.resolution * static_cast<double>(k - 1) / 4;
+    const double walk_reach = stack.layers[back_layer].height * slope + s.resolution / 2;
+    std::vector<layers::BeadBeneath> beads;
+    for (int k : stack.layers[back_layer].beneath)
+        for (const layers::Segment& sg : stack.layers[k].segments)
+            beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt});
+    std::vector<std::array<float, 2>> written;
     auto held = [&](double x, double y) {
         if (!loop_rests(obs, model_layer, x, y, r, s.support_width, reach)) return false;
-        for (double rr : reaches)
-            if (!sides_held(obs, model_layer, x, y, shape, rr, s.resolution, s.marked_bridge_limit)) return false;
-        return true;
+        written.clear();
+        for (const auto& v : loop_vertices(x, y, r, s.support_width))
+            written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+        return layers::path_held(written, beads, walk_reach, s.resolution, s.marked_bridge_limit);
     };
     if (held(back.x, back.y)) return Settle::Held;
     const double need = r + clearance_at(proto, back.z, s) + s.resolution / 2;

@@ -1,5 +1,6 @@
 #pragma once
 #include <algorithm>
+#include <array>
 // Vertical pillars: one per support point, down to the bed or to the model's
 // top surface, kept clear of the model by the XY gap on every layer. Where
 // the model bulges out below, the pillar steps aside a little per layer (no
@@ -113,6 +114,9 @@ struct LoopShape {
     int sides = 8;
 };
 LoopShape loop_shape(double r, double width);
+// The loop's vertices as the toolpaths print it, from angle 0 round to it
+// again (sides + 1 points).
+std::vector<std::array<double, 2>> loop_vertices(double cx, double cy, double r, double width);
 
 // How far a loop's centre line may stray from the loop printed under it
 // (on a layer of height h) and still rest on it: the self-supporting reach

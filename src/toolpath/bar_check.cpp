@@ -22,11 +22,10 @@ struct Bead {
     bool support;  // a contact tip where it lies under the model of the bar's layer
 };
 
-// A coordinate as the validator reads it back: written with 3 decimals
-// (splice), parsed, stored as a float (layers::Segment). The crossing test
-// is decided on samples of the written line; a bar judged on its exact
-// coordinates was held here and not there (figure.slic3r13, z 17.2).
-float written(double v) { return static_cast<float>(std::round(v * 1000) / 1000); }
+// The crossing test is decided on samples of the written line; a bar
+// judged on its exact coordinates was held here and not there
+// (figure.slic3r13, z 17.2).
+float written(double v) { return layers::as_written(v); }
 
 bool every_held(const std::vector<layers::PieceSample>& p) {
     return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; });

@@ -17,15 +17,8 @@
 namespace scaffold::toolpath {
 
 std::vector<Point> loop(double cx, double cy, double r, double width) {
-    const plan::LoopShape shape = plan::loop_shape(r, width);
-    const double rc = shape.centre_radius;
-    const int sides = shape.sides;
     std::vector<Point> pts;
-    pts.reserve(sides + 1);
-    for (int k = 0; k <= sides; ++k) {
-        double a = 2 * std::numbers::pi * (k % sides) / sides;
-        pts.push_back({cx + rc * std::cos(a), cy + rc * std::sin(a)});
-    }
+    for (const auto& v : plan::loop_vertices(cx, cy, r, width)) pts.push_back({v[0], v[1]});
     return pts;
 }
 

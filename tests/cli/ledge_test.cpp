@@ -88,15 +88,15 @@ TEST(Ledge, BottomLoopsOnAnEdgeAreHeldSideBySide) {
 // half over air passed the planner's walk at the three reaches it tried,
 // while the validator, whose reach from the beads' edges lies between two
 // of them, held the side's ends and not its middle, a run along the edge:
-// 0.20 mm^2). Every quarter cell of the band is walked now, and a tip
-// whose loop is held nowhere near looks further. Before: 0.60 mm^2 unheld
-// at 20 deg, 0.16 at 50. (Known residual, left out here: at 115 deg one
-// loop keeps 0.16 mm^2, a side held, unheld, held sample by sample along a
-// staircase of the validator's raster that no reach of the planner's
-// reproduces.)
+// 0.20 mm^2). The loop is now walked as the validator walks it, its
+// vertices as written and the beads beneath on the validator's lattice
+// (layers::path_held), and a tip whose loop is held nowhere near looks
+// further. Before: 0.60 mm^2 unheld at 20 deg, 0.16 at 50; at 115 deg 0.16
+// with a walk at every quarter cell of the reach (a side held, unheld,
+// held sample by sample along a staircase of the validator's raster).
 TEST(Ledge, TipLoopsOnAnEdgeAreHeldSideBySide) {
     const std::vector<double> offsets{-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3, 0.4};
-    for (double edge_deg : {0.0, 20.0, 35.0, 50.0}) {
+    for (double edge_deg : {0.0, 20.0, 35.0, 50.0, 115.0}) {
         const std::string in = ledge(edge_deg, offsets, 15);
         const std::string out = scaffold::testing::scaffolded(in, {{"--min-overhang-area", "0"}});
         const auto o = gcode::parse(out, "out.gcode");
