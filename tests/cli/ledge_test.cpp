@@ -65,19 +65,23 @@ std::string ledge(double edge_deg, const std::vector<double>& offsets, int first
     return g.str();
 }
 
+// scaffold at --min-overhang-area 0 on `in`, checked with nothing forgiven.
+check::CheckReport scaffolded_and_checked(const std::string& in) {
+    const std::string out = scaffold::testing::scaffolded(in, {{"--min-overhang-area", "0"}});
+    const auto o = gcode::parse(out, "out.gcode");
+    const auto i = gcode::parse(in, "in.gcode");
+    check::CheckOptions opt;
+    opt.tolerance_mm2 = 0;
+    opt.min_region_mm2 = 0;
+    return check::check(o, &i, opt);
+}
+
 }  // namespace
 
 TEST(Ledge, BottomLoopsOnAnEdgeAreHeldSideBySide) {
     const std::vector<double> offsets{-0.9, -0.75, -0.6, -0.45, -0.3, -0.15, 0.0, 0.15, 0.3};
     for (double edge_deg : {0.0, 30.0, 50.0, 130.0}) {
-        const std::string in = ledge(edge_deg, offsets);
-        const std::string out = scaffold::testing::scaffolded(in, {{"--min-overhang-area", "0"}});
-        const auto o = gcode::parse(out, "out.gcode");
-        const auto i = gcode::parse(in, "in.gcode");
-        check::CheckOptions opt;
-        opt.tolerance_mm2 = 0;
-        opt.min_region_mm2 = 0;
-        const check::CheckReport r = check::check(o, &i, opt);
+        const check::CheckReport r = scaffolded_and_checked(ledge(edge_deg, offsets));
         EXPECT_EQ(r.unheld_support_mm2, 0.0) << "edge at " << edge_deg << " deg";
         EXPECT_TRUE(r.ok()) << "edge at " << edge_deg << " deg";
     }
@@ -96,15 +100,7 @@ TEST(Ledge, BottomLoopsOnAnEdgeAreHeldSideBySide) {
 // held sample by sample along a staircase of the validator's raster).
 TEST(Ledge, TipLoopsOnAnEdgeAreHeldSideBySide) {
     const std::vector<double> offsets{-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3, 0.4};
-    for (double edge_deg : {0.0, 20.0, 35.0, 50.0, 115.0}) {
-        const std::string in = ledge(edge_deg, offsets, 15);
-        const std::string out = scaffold::testing::scaffolded(in, {{"--min-overhang-area", "0"}});
-        const auto o = gcode::parse(out, "out.gcode");
-        const auto i = gcode::parse(in, "in.gcode");
-        check::CheckOptions opt;
-        opt.tolerance_mm2 = 0;
-        opt.min_region_mm2 = 0;
-        const check::CheckReport r = check::check(o, &i, opt);
-        EXPECT_EQ(r.unheld_support_mm2, 0.0) << "edge at " << edge_deg << " deg";
-    }
+    for (double edge_deg : {0.0, 20.0, 35.0, 50.0, 115.0})
+        EXPECT_EQ(scaffolded_and_checked(ledge(edge_deg, offsets, 15)).unheld_support_mm2, 0.0)
+            << "edge at " << edge_deg << " deg";
 }
