@@ -78,27 +78,23 @@ void hold_runs(std::vector<PieceSample>& p, const BitGrid& footprint, double max
     }
 }
 
-bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<BeadBeneath>& beads, double reach,
-               double cell, double max_span, double dangling_end) {
-    if (pts.size() < 2) return true;
-    // The grid: the path and what can reach it (the crossing test looks up
-    // to 3 mm from a sample), on the validator's lattice.
-    constexpr double kMargin = 4.0;
-    float lo_x = pts[0][0], hi_x = lo_x, lo_y = pts[0][1], hi_y = lo_y;
-    for (const auto& q : pts) {
-        lo_x = std::min(lo_x, q[0]), hi_x = std::max(hi_x, q[0]);
-        lo_y = std::min(lo_y, q[1]), hi_y = std::max(hi_y, q[1]);
-    }
-    const double x0 = std::floor((lo_x - kMargin) / cell) * cell, x1 = hi_x + kMargin;
-    const double y0 = std::floor((lo_y - kMargin) / cell) * cell, y1 = hi_y + kMargin;
-    BitGrid footprint(x0, y0, x1, y1, cell), held = footprint;
+Beneath::Beneath(const std::vector<BeadBeneath>& beads, double x0, double y0, double x1, double y1, double reach,
+                 double cell)
+    : footprint_(std::floor(x0 / cell) * cell, std::floor(y0 / cell) * cell, x1, y1, cell),
+      held_(footprint_.empty_like()),
+      cell_(cell) {
     for (const BeadBeneath& d : beads) {
-        if (std::max(d.x0, d.x1) < x0 - reach - d.width || std::min(d.x0, d.x1) > x1 + reach + d.width ||
-            std::max(d.y0, d.y1) < y0 - reach - d.width || std::min(d.y0, d.y1) > y1 + reach + d.width)
+        const double grow = reach + d.width;
+        if (std::max(d.x0, d.x1) < x0 - grow || std::min(d.x0, d.x1) > x1 + grow || std::max(d.y0, d.y1) < y0 - grow ||
+            std::min(d.y0, d.y1) > y1 + grow)
             continue;
-        if (d.rim) footprint.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
-        held.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width + 2 * reach);
+        if (d.rim) footprint_.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
+        held_.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width + 2 * reach);
     }
+}
+
+bool Beneath::path_held(const std::vector<std::array<float, 2>>& pts, double max_span, double dangling_end) const {
+    if (pts.size() < 2) return true;
     // Pieces, each straight within kStraightDeg of its first move; every
     // piece after the first starts at a corner of the path.
     const double cos_straight = std::cos(kStraightDeg * std::numbers::pi / 180);
@@ -114,20 +110,22 @@ bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<B
             ux = len > 0 ? dx / len : 0;
             uy = len > 0 ? dy / len : 0;
         }
-        sample_segment(sg, static_cast<std::uint32_t>(k), held, cell, pieces.back());
+        sample_segment(sg, static_cast<std::uint32_t>(k), held_, cell_, pieces.back());
     }
-    // (a), then the holes the beads beneath enclose.
-    BitGrid seeds = footprint;
-    seeds.clear();
+    // (a), then the holes the beads beneath enclose (a sample unheld by (a)
+    // lies off the footprint: in a hole exactly where the filled footprint
+    // has it, filled once for every path walked here).
     bool any_unheld = false;
     for (const auto& piece : pieces)
-        for (const PieceSample& q : piece)
-            if (!q.held) seeds.set(seeds.col(q.x), seeds.row(q.y)), any_unheld = true;
+        for (const PieceSample& q : piece) any_unheld = any_unheld || !q.held;
     if (!any_unheld) return true;
-    const BitGrid enclosed = footprint.enclosed(seeds);
+    if (!have_filled_) {
+        filled_ = footprint_.filled();
+        have_filled_ = true;
+    }
     for (auto& piece : pieces)
         for (PieceSample& q : piece)
-            if (!q.held && enclosed.get(enclosed.col(q.x), enclosed.row(q.y))) q.held = true;
+            if (!q.held && filled_.get(filled_.col(q.x), filled_.row(q.y))) q.held = true;
     // (b): corners through the piece beside, then runs and dangling ends.
     std::vector<std::pair<bool, bool>> joint(pieces.size(), {false, false});
     for (std::size_t q = 1; q < pieces.size(); ++q) {
@@ -139,11 +137,24 @@ bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<B
         if (joint[q].second) pieces[q].back().held = true;
     }
     for (auto& piece : pieces) {
-        hold_runs(piece, footprint, max_span, dangling_end);
+        hold_runs(piece, footprint_, max_span, dangling_end);
         for (const PieceSample& q : piece)
             if (!q.held) return false;
     }
     return true;
+}
+
+bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<BeadBeneath>& beads, double reach,
+               double cell, double max_span, double dangling_end) {
+    if (pts.size() < 2) return true;
+    float lo_x = pts[0][0], hi_x = lo_x, lo_y = pts[0][1], hi_y = lo_y;
+    for (const auto& q : pts) {
+        lo_x = std::min(lo_x, q[0]), hi_x = std::max(hi_x, q[0]);
+        lo_y = std::min(lo_y, q[1]), hi_y = std::max(hi_y, q[1]);
+    }
+    const Beneath under(beads, lo_x - kBeneathMargin, lo_y - kBeneathMargin, hi_x + kBeneathMargin,
+                        hi_y + kBeneathMargin, reach, cell);
+    return under.path_held(pts, max_span, dangling_end);
 }
 
 }  // namespace scaffold::layers

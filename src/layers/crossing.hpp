@@ -105,14 +105,34 @@ struct BeadBeneath {
     bool rim;
 };
 
-// Whether every sample of a path of consecutive moves (its points as the
-// validator reads them back: `pts`, floats) is held over `beads` by METHOD's
-// rules (a) and (b) as the validator walks it (check/printability): rule
-// (a) on its lattice (make_grid's multiples of the cell), straight pieces
-// within kStraightDeg of their first move, holes the beads enclose, a
-// corner held where the piece before or after it is held within a dangling
-// end of it (not at the path's first point), then runs across gaps of at
-// most `max_span` and dangling ends. Rule (c) is not asked.
+// The beads beneath drawn once, on the validator's lattice (make_grid's
+// multiples of the cell), over a box: the footprint and what rule (a)
+// holds, for every path walked over them inside it (less the crossing
+// test's 4 mm search: kBeneathMargin).
+inline constexpr double kBeneathMargin = 4.0;
+class Beneath {
+public:
+    Beneath(const std::vector<BeadBeneath>& beads, double x0, double y0, double x1, double y1, double reach,
+            double cell);
+    // Whether every sample of a path of consecutive moves (its points as the
+    // validator reads them back: `pts`, floats, inside the box less the
+    // margin) is held by METHOD's rules (a) and (b) as the validator walks it
+    // (check/printability): straight pieces within kStraightDeg of their
+    // first move, holes the beads enclose, a corner held where the piece
+    // before or after it is held within a dangling end of it (not at the
+    // path's first point), then runs across gaps of at most `max_span` and
+    // dangling ends. Rule (c) is not asked.
+    bool path_held(const std::vector<std::array<float, 2>>& pts, double max_span,
+                   double dangling_end = kDanglingEnd) const;
+
+private:
+    BitGrid footprint_, held_;
+    mutable BitGrid filled_;  // the footprint with its holes filled, once asked
+    mutable bool have_filled_ = false;
+    double cell_;
+};
+
+// The same over the path's own box.
 bool path_held(const std::vector<std::array<float, 2>>& pts, const std::vector<BeadBeneath>& beads, double reach,
                double cell, double max_span, double dangling_end = kDanglingEnd);
 

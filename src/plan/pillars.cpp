@@ -207,17 +207,24 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
     // unheld: held at both ends, not in the middle, a run along the edge).
     const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     const double walk_reach = stack.layers[back_layer].height * slope + s.resolution / 2;
+    // The beads beneath drawn once over every place the loop is tried at
+    // (up to the last settle shift away), with the crossing test's margin.
+    const double around = shape.centre_radius + kSettleShifts.back() + layers::kBeneathMargin + 0.1;
+    const double bx0 = back.x - around, by0 = back.y - around, bx1 = back.x + around, by1 = back.y + around;
     std::vector<layers::BeadBeneath> beads;
     for (int k : stack.layers[back_layer].beneath)
         for (const layers::Segment& sg : stack.layers[k].segments)
-            beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt});
+            if (std::max(sg.x0, sg.x1) >= bx0 - 2 && std::min(sg.x0, sg.x1) <= bx1 + 2 &&
+                std::max(sg.y0, sg.y1) >= by0 - 2 && std::min(sg.y0, sg.y1) <= by1 + 2)
+                beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt});
+    const layers::Beneath under(beads, bx0, by0, bx1, by1, walk_reach, s.resolution);
     std::vector<std::array<float, 2>> written;
     auto held = [&](double x, double y) {
         if (!loop_rests(obs, model_layer, x, y, r, s.support_width, reach)) return false;
         written.clear();
         for (const auto& v : loop_vertices(x, y, r, s.support_width))
             written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
-        return layers::path_held(written, beads, walk_reach, s.resolution, s.marked_bridge_limit);
+        return under.path_held(written, s.marked_bridge_limit);
     };
     if (held(back.x, back.y)) return Settle::Held;
     const double need = r + clearance_at(proto, back.z, s) + s.resolution / 2;
@@ -455,12 +462,22 @@ int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Setting
 
 namespace {
 
+// Tip columns whose bottom loop leaves a sliver unheld, met while one
+// drop_pillar call looks for a held one: the first is kept, and only so
+// many more places are tried (each a descent and a walk of up to 65 loops:
+// with no bound, --method pillars on a file without its comments, its
+// points over sloping shelves, took minutes instead of 2 s).
+inline constexpr int kUnheldTries = 12;
+struct UnheldTips {
+    std::optional<std::vector<Column>> first;
+    int tries_left = kUnheldTries;
+};
+
 std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int overhang_layer, Top top,
                                                       const layers::LayerStack& stack, const Obstacles& obs,
                                                       const Settings& s, const Trunks* trunks, TipPlaces places,
                                                       bool fit_base, double hold, double give, double stiff,
-                                                      bool thin_above,
-                                                      std::optional<std::vector<Column>>* unheld = nullptr) {
+                                                      bool thin_above, UnheldTips* unheld = nullptr) {
     const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
     Column proto;
@@ -546,8 +563,9 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                 // next shapes (bunny.slic3r13 at --min-overhang-area 0: a
                 // 1 mm loop half over air, 0.20 mm^2), the first such
                 // column kept in `unheld`.
-                if (settled == Settle::Unheld && top == Top::Contact) {
-                    if (unheld && !*unheld) *unheld = chain;
+                if (settled == Settle::Unheld && top == Top::Contact && unheld) {
+                    if (!unheld->first) unheld->first = chain;
+                    if (--unheld->tries_left < 0) return unheld->first;
                     continue;
                 }
                 if (fit_base && chain.front().base == Base::Bed)
@@ -577,7 +595,7 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
         // beside a wall. Not where a wider one was found whose bottom loop
         // leaves a sliver unheld: a thin column stands far less (the
         // shuttle at --min-overhang-area 0: 0.72 -> 0.05 N/mm for 0.17 mm^2).
-        if (top == Top::Contact && !s.buildplate_only && !(unheld && *unheld)) {
+        if (top == Top::Contact && !s.buildplate_only && !(unheld && unheld->first)) {
             // A thinner top needs more taper for the same stiffness.
             auto retaper = [&](Column& c) {
                 if (proto.taper > 0)
@@ -618,7 +636,7 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         // A column whose bottom loop only the validator's walk leaves a
         // sliver of: kept while the other shapes are tried, taken if none
         // stands held.
-        std::optional<std::vector<Column>> unheld;
+        UnheldTips unheld;
         const int below = stack.layers[overhang_layer].below;
         const bool neck_too = !thin_above && top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6;
         auto shaped = [&](double stiff, bool neck) {
@@ -664,13 +682,13 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold,
                                             give, -1.0, thin_above, &unheld))
             return chain;
-        return unheld;
+        return unheld.first;
     }
-    std::optional<std::vector<Column>> unheld;
+    UnheldTips unheld;
     if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give,
                                         -1.0, thin_above, &unheld))
         return chain;
-    return unheld;
+    return unheld.first;
 }
 
 void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {
