@@ -626,6 +626,9 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
     // Whether a pillar stands at all (fit_base false: a bridge end asked
     // about) is the plain column's question: a narrower one fits wherever a
     // wider one does.
+    // A column whose bottom loop only the validator's walk leaves a sliver
+    // of: kept while the other shapes are tried, taken if none stands held.
+    UnheldTips unheld;
     if (target_stiffness(s) > 0 && fit_base) {
         // Where the widened column finds no way down, less widened ones, then
         // a straight one without a neck, then the plain one with its neck,
@@ -633,10 +636,6 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
         // Under a bar end that holds more above (where the widened column
         // has no neck), a neck may be all that fits at the top: a widened
         // column with a neck before the plain one.
-        // A column whose bottom loop only the validator's walk leaves a
-        // sliver of: kept while the other shapes are tried, taken if none
-        // stands held.
-        UnheldTips unheld;
         const int below = stack.layers[overhang_layer].below;
         const bool neck_too = !thin_above && top == Top::Bridge && below >= 0 && hold > stack.layers[below].z + 1e-6;
         auto shaped = [&](double stiff, bool neck) {
@@ -679,12 +678,7 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
             }
             if (!neck_too) break;
         }
-        if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold,
-                                            give, -1.0, thin_above, &unheld))
-            return chain;
-        return unheld.first;
     }
-    UnheldTips unheld;
     if (auto chain = drop_pillar_shaped(x, y, overhang_layer, top, stack, obs, s, trunks, places, fit_base, hold, give,
                                         -1.0, thin_above, &unheld))
         return chain;

@@ -17,8 +17,10 @@
 namespace scaffold::toolpath {
 
 std::vector<Point> loop(double cx, double cy, double r, double width) {
+    const std::vector<std::array<double, 2>> vertices = plan::loop_vertices(cx, cy, r, width);
     std::vector<Point> pts;
-    for (const auto& v : plan::loop_vertices(cx, cy, r, width)) pts.push_back({v[0], v[1]});
+    pts.reserve(vertices.size());
+    for (const auto& v : vertices) pts.push_back({v[0], v[1]});
     return pts;
 }
 
