@@ -162,6 +162,59 @@ void smooth_caps(std::vector<Step>& path, const Column& proto, const layers::Lay
     }
 }
 
+// The column's give at hold_z along its path (METHOD's Standing rule, each
+// step's loop at its own radius, caps included), down to its base at c.z0.
+double path_compliance(const Column& c, const std::vector<Step>& path, const Settings& s) {
+    double compliance = 0;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+        const double below = i + 1 < path.size() ? path[i + 1].z : c.z0;
+        const double lever = c.hold_z - path[i].z;
+        if (lever <= 0) continue;
+        compliance += lever * lever * (path[i].z - below) /
+                      (s.modulus * ring_inertia(step_radius(c, path[i], s), s.support_width));
+    }
+    return compliance;
+}
+
+// widen_column on a way down found by descend (pillars.hpp says what it
+// does). A tip falls back to the thin, plain column where a tapered one
+// finds no way down (elephant x16: copies 6 mm apart, a 1 mm column from the
+// bed, 0.18 N/mm), yet its lowest loops, with the longest lever, are where
+// its give comes from and often where the room is.
+bool widen_in_place(Column& c, std::vector<Step>& path, int top_layer, const layers::LayerStack& stack,
+                    const Obstacles& obs, const Settings& s, double give) {
+    if (path.size() < 2 || c.base == Base::Column || !(target_stiffness(s) > 0)) return false;
+    const double before = path_compliance(c, path, s);
+    if (1 / (before + give) >= kGiveMargin * s.min_stiffness) return false;  // stands as it is
+    Column wide = c;
+    wide.taper = taper_for(c.radius, c.hold_z - c.z0, target_stiffness(s), give, s.support_width, s.modulus);
+    wide.max_radius = 0;
+    if (wide.taper <= c.taper + 1e-9) return false;
+    std::vector<Step> widened = path;
+    bool wider = false;
+    int l = top_layer;
+    for (std::size_t i = 0; i < widened.size() && l >= 0; ++i, l = stack.layers[l].below) {
+        Step& st = widened[i];
+        const double r_was = step_radius(c, path[i], s);
+        const double r_full = column_radius_at(wide, st.z, s);
+        double r = r_full;
+        if (i + 1 == widened.size() && c.base == Base::Model) {
+            r = r_was;  // the bottom loop rests as found
+        } else if (const double extra = clearance_at(wide, st.z, s) + s.resolution / 2;
+                   r_full > r_was + 0.01 && !obs.disc_clear(l, st.x, st.y, r_full + extra)) {
+            r = widest_clear(obs, l, st.x, st.y, r_was, r_full, extra);
+        }
+        st.cap = r < r_full - 1e-9 ? std::max(r, wide.radius) : 0.0;
+        wider |= r > r_was + 0.01;
+    }
+    if (!wider) return false;
+    smooth_caps(widened, wide, stack, top_layer, s);
+    if (path_compliance(wide, widened, s) >= before) return false;
+    c = wide;
+    path = std::move(widened);
+    return true;
+}
+
 // Where a column found its base on the model: the layer of its bottom loop
 // and the model's layer under it.
 struct ModelBase {
@@ -568,6 +621,11 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                     if (--unheld->tries_left < 0) return unheld->first;
                     continue;
                 }
+                if (fit_base && top == Top::Contact) {
+                    Column sized = c;
+                    if (narrow) sized.taper = narrowed.taper;
+                    if (widen_in_place(sized, path, top_layer, stack, obs, s, give)) chain = columns_of(sized, path);
+                }
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
                 return chain;
@@ -683,6 +741,33 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                                         -1.0, thin_above, &unheld))
         return chain;
     return unheld.first;
+}
+
+bool widen_column(std::vector<Column>& chain, const layers::LayerStack& stack, const Obstacles& obs,
+                  const Settings& s, double give) {
+    if (chain.empty()) return false;
+    int top_layer = -1;
+    for (int l = 0; l < static_cast<int>(stack.layers.size()) && top_layer < 0; ++l)
+        if (std::abs(stack.layers[l].z - chain.back().z1) < 1e-6) top_layer = l;
+    if (top_layer < 0) return false;
+    // The centre and cap per layer, top first, as the descent found them.
+    std::vector<Step> path;
+    for (int l = top_layer; l >= 0 && stack.layers[l].z > chain.front().z0 + 1e-6; l = stack.layers[l].below) {
+        const double z = stack.layers[l].z;
+        const auto piece = std::find_if(chain.begin(), chain.end(), [&](const Column& c) {
+            return z > c.z0 + 1e-6 && z <= c.z1 + 1e-6;
+        });
+        if (piece == chain.end()) return false;
+        double x, y;
+        column_centre_at(*piece, z, x, y);
+        path.push_back({x, y, z, piece->max_radius});
+    }
+    Column proto = chain.front();
+    proto.top = chain.back().top;
+    proto.max_radius = 0;
+    if (!widen_in_place(proto, path, top_layer, stack, obs, s, give)) return false;
+    chain = columns_of(proto, path);
+    return true;
 }
 
 void Trunks::add(const std::vector<Column>& chain, const layers::LayerStack& stack, const Settings& s) {

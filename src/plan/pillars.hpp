@@ -63,6 +63,16 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                                                TipPlaces places = TipPlaces::Any, bool fit_base = true,
                                                double hold = 0, double give = 0, bool thin_above = false);
 
+// A tip's column that does not stand by METHOD's Standing rule as planned
+// (found with less taper than the rule asks), widened along the same way
+// down: each loop as wide as the room on its layer allows, up to the full
+// taper, changing per layer no more than a loop may step out on the one
+// below; a bottom loop on the model stays as it was. `chain`: one column's
+// pieces, bottom first, as drop_pillar gives them. True where it got wider
+// (and so stiffer); `give` as drop_pillar's.
+bool widen_column(std::vector<Column>& chain, const layers::LayerStack& stack, const Obstacles& obstacles,
+                  const Settings& settings, double give = 0);
+
 // Support point indices in a canonical order, so the plan does not depend
 // on the order of the input: place_points' own (layer, y, x), then z and index.
 std::vector<int> canonical_order(const overhang::SupportPoints& points);

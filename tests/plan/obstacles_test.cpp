@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -483,4 +484,79 @@ TEST(PlanPillars, ALongerNeckReachesIntoACrotchAndTheColumnStaysWideBelow) {
     const auto chains = plan::pillar_chains(sc);
     ASSERT_EQ(chains.size(), 1u);
     EXPECT_GE(1 / plan::chain_compliance(chains[0], top.z1, sc, st, s), s.min_stiffness);
+}
+
+// A tip's column found plain and thin (a copy of a plate 6 mm off, a slot at
+// its top) stands by the Standing rule once widened along the same way down
+// where there is room. By hand: a single-wall ring of 0.6 mm outer radius
+// (centre line 0.375 mm, 0.45 mm wall), E I = 3500 pi 0.45 0.375^3 =
+// 260.93 N mm^2, 19.6 mm from the bed to its top: over the 98 layers, each
+// (0.2 k, 0.2 (k + 1)) below the top, the integral of h^2 dh / E I, summed:
+// 0.008 sum (k + 1/2)^2 (k = 0..97) = 0.008 (308945 + 4753 + 24.5) =
+// 2509.78 mm^3, / 260.93 = 9.619 mm/N: 0.104 N/mm.
+TEST(PlanPillars, AThinColumnWidensBelowWhereItIsSqueezed) {
+    Settings s;  // --min-stiffness 2
+    constexpr int kTop = 97;  // z 19.6
+    const layers::LayerStack st = test::stack_of(
+        kTop + 3,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i >= 85) {  // walls 2.8 mm apart from z 17.2 up
+                test::bead(l, 48.6, 40, 48.6, 60, gcode::Role::Perimeter);
+                test::bead(l, 51.4, 40, 51.4, 60, gcode::Role::Perimeter);
+            }
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    plan::Column plain;
+    plain.x0 = plain.x1 = 50;
+    plain.y0 = plain.y1 = 50;
+    plain.z0 = 0;
+    plain.z1 = st.layers[kTop].z;
+    plain.radius = 0.6;
+    plain.hold_z = plain.z1;
+    plain.base = plan::Base::Bed;
+    std::vector<plan::Column> chain{plain};
+    auto stiffness = [&](const std::vector<plan::Column>& c) {
+        plan::Scaffold sc;
+        sc.columns = c;
+        const auto chains = plan::pillar_chains(sc);
+        EXPECT_EQ(chains.size(), 1u);
+        return 1 / plan::chain_compliance(chains[0], plain.z1, sc, st, s);
+    };
+    EXPECT_NEAR(stiffness(chain), 1 / 9.619, 0.0005);
+    ASSERT_TRUE(plan::widen_column(chain, st, obs, s));
+    const double full = plan::taper_for(0.6, plain.z1, plan::target_stiffness(s), 0, s.support_width, s.modulus);
+    ASSERT_GT(full, 0.03);
+    EXPECT_GE(stiffness(chain), s.min_stiffness);
+    EXPECT_EQ(chain.front().base, plan::Base::Bed);
+    EXPECT_EQ(chain.front().z0, 0);
+    double below = 0;
+    for (int l = 0; l <= kTop; ++l) {
+        const double z = st.layers[l].z;
+        const auto piece = std::find_if(chain.begin(), chain.end(), [&](const plan::Column& c) {
+            return z > c.z0 + 1e-6 && z <= c.z1 + 1e-6;
+        });
+        ASSERT_NE(piece, chain.end()) << "z " << z;
+        double x, y;
+        plan::column_centre_at(*piece, z, x, y);
+        EXPECT_EQ(x, 50);  // the same way down
+        EXPECT_EQ(y, 50);
+        const double r = plan::column_radius_at(*piece, z, s);
+        EXPECT_TRUE(obs.disc_clear(l, x, y, r + s.xy_gap)) << "z " << z;
+        EXPECT_GE(r, 0.6 - 1e-9);
+        if (z > 17.1) {  // squeezed between the walls (their beads' edges 1.175 mm off)
+            EXPECT_LE(r, 1.175 - s.xy_gap + s.resolution) << "z " << z;
+        }
+        if (z < 12) {  // the full taper where there is room, the lever longest
+            EXPECT_NEAR(r, 0.6 + full * (plain.z1 - z), 1e-9) << "z " << z;
+        }
+        if (l > 0) {  // each loop rests on the one below it
+            EXPECT_LE(std::abs(r - below), plan::loop_shift_limit(0.2, s) + 1e-9) << "z " << z;
+        }
+        below = r;
+    }
+    // Already standing: left as it is.
+    std::vector<plan::Column> again = chain;
+    EXPECT_FALSE(plan::widen_column(again, st, obs, s));
 }
