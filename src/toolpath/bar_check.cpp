@@ -100,14 +100,49 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     return every_held(p);
 }
 
+// What lies beneath layer `l` as METHOD and the validator take it: the
+// model within one nominal layer (its layers beneath), support printed up to
+// three nominal layers down (`printed`), and the model of the layer itself.
+void gather_beneath(int l, const std::vector<LayerPaths>& printed, const layers::LayerStack& stack,
+                    const Settings& settings, std::vector<Bead>& beads, std::vector<Bead>& here) {
+    const layers::Layer& layer = stack.layers[l];
+    beads.clear();
+    for (int k : layer.beneath)
+        for (const layers::Segment& sg : stack.layers[k].segments)
+            beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt, false});
+    here.clear();
+    for (const layers::Segment& sg : layer.segments)
+        if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role))
+            here.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, true, false});
+    for (const LayerPaths& under : printed) {
+        const double dz = layer.z - printed_z(under, stack);
+        if (dz <= kZEps || dz > 3 * settings.layer_height + kZEps) continue;
+        for (const Path& path : under.paths)
+            for (std::size_t i = 1; i < path.points.size(); ++i)
+                beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y), written(path.points[i].x),
+                                 written(path.points[i].y), static_cast<float>(path.width), true, true});
+    }
+}
+
+double reach_on(const layers::Layer& layer, const Settings& settings) {
+    return layer.height * std::tan(settings.overhang_angle_deg * std::numbers::pi / 180) + settings.resolution / 2;
+}
+
 }  // namespace
+
+bool segment_held(const Point& a, const Point& b, int layer, const std::vector<LayerPaths>& printed,
+                  const layers::LayerStack& stack, const Settings& settings) {
+    std::vector<Bead> beads, here;
+    std::vector<layers::PieceSample> samples;
+    gather_beneath(layer, printed, stack, settings, beads, here);
+    return line_held(a, b, beads, here, reach_on(stack.layers[layer], settings), settings.resolution,
+                     settings.marked_bridge_limit, settings.point_radius, samples);
+}
 
 std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
                                      const layers::LayerStack& stack, const Settings& settings) {
     std::vector<std::size_t> out;
     if (scaffold.bridges.empty()) return out;
-    const double slope = std::tan(settings.overhang_angle_deg * std::numbers::pi / 180);
-    const double h_nom = settings.layer_height;
     std::vector<Bead> beads, here;
     std::vector<layers::PieceSample> samples;
     for (std::size_t bi = 0; bi < scaffold.bridges.size(); ++bi) {
@@ -115,29 +150,10 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
         bool bad = false;
         for (const LayerPaths& lp : paths.layers) {
             if (lp.bond()) continue;  // loops only, under a column's first layer
-            const layers::Layer& layer = stack.layers[lp.layer];
-            const double z = layer.z;
+            const double z = stack.layers[lp.layer].z;
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
-            // The layer beneath as METHOD and the validator take it: the
-            // model within one nominal layer, support within three.
-            beads.clear();
-            for (int k : layer.beneath)
-                for (const layers::Segment& sg : stack.layers[k].segments)
-                    beads.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, sg.role != gcode::Role::Skirt, false});
-            here.clear();
-            for (const layers::Segment& sg : layer.segments)
-                if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role))
-                    here.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, true, false});
-            for (const LayerPaths& under : paths.layers) {
-                const double dz = z - printed_z(under, stack);
-                if (dz <= kZEps || dz > 3 * h_nom + kZEps) continue;
-                for (const Path& path : under.paths)
-                    for (std::size_t i = 1; i < path.points.size(); ++i)
-                        beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y),
-                                         written(path.points[i].x), written(path.points[i].y),
-                                         static_cast<float>(path.width), true, true});
-            }
-            const double reach = layer.height * slope + settings.resolution / 2;
+            gather_beneath(lp.layer, paths.layers, stack, settings, beads, here);
+            const double reach = reach_on(stack.layers[lp.layer], settings);
             for (const std::vector<Point>& line : bar_lines(br, settings.support_width, settings.pillar_radius))
                 if (!line_held(line.front(), line.back(), beads, here, reach, settings.resolution,
                                settings.marked_bridge_limit, settings.point_radius, samples)) {

@@ -17,6 +17,13 @@
 
 namespace scaffold::toolpath {
 
+// Whether the straight support bead a -> b printed on `layer` is held, by
+// the same walk, over the model beneath and the support in `printed` (the
+// layers printed so far, in any order: those within three nominal layers
+// under it count).
+bool segment_held(const Point& a, const Point& b, int layer, const std::vector<LayerPaths>& printed,
+                  const layers::LayerStack& stack, const Settings& settings);
+
 // Indices into scaffold.bridges of the bars some line of which is not held.
 std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
                                      const layers::LayerStack& stack, const Settings& settings);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <tuple>
@@ -13,6 +14,7 @@
 #pragma GCC diagnostic pop
 
 #include "plan/pillars.hpp"
+#include "toolpath/bar_check.hpp"
 
 namespace scaffold::toolpath {
 
@@ -229,8 +231,13 @@ void order_paths(std::vector<Path>& paths) {
 // the layer under the bar, straight out from the loop and under both bar
 // lines, gives the bar a held stretch it crosses at right angles instead.
 // The spur itself is a dangling end of the loop (under 1 mm past its reach).
+// `held`: whether a spur would be held where it is printed (a spur whose far
+// end comes within reach of other support beneath is no dangling end but a
+// run between held ends, which rule (b) holds only across a gap: the
+// shuttle at --min-overhang-area 0, a spur from a widened loop, 0.29 mm^2).
 void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridges, double z,
-               const layers::Layer& bar_layer, const Settings& s) {
+               const layers::Layer& bar_layer, const Settings& s,
+               const std::function<bool(const Point&, const Point&)>& held) {
     constexpr double kRoundLoop = 0.01;  // mm: a loop's vertices all this close to one circle
     const double w = s.support_width;
     const double reach = bar_layer.height * std::tan(s.overhang_angle_deg * std::numbers::pi / 180) + s.resolution / 2;
@@ -278,7 +285,7 @@ void add_spurs(std::vector<Path>& paths, const std::vector<plan::Bridge>& bridge
             spur.width = w;
             spur.speed_mm_s = p.speed_mm_s;
             spur.points = {{cx + nx * from, cy + ny * from}, {cx + nx * to, cy + ny * to}};
-            paths.push_back(std::move(spur));
+            if (held(spur.points.front(), spur.points.back())) paths.push_back(std::move(spur));
         }
     }
 }
@@ -538,7 +545,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 lp.paths.push_back(std::move(p));
             }
         }
-        if (next[l] >= 0) add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s);
+        if (next[l] >= 0)
+            add_spurs(lp.paths, scaffold.bridges, z, stack.layers[next[l]], s, [&](const Point& a, const Point& b) {
+                return segment_held(a, b, l, out.layers, stack, s);
+            });
         if (lp.paths.empty() && bonded.empty()) continue;
         auto finish = [&](LayerPaths& e) {
             order_paths(e.paths);

@@ -5,6 +5,7 @@
 
 #include "plan/pillars.hpp"
 #include "support/stacks.hpp"
+#include "toolpath/bar_check.hpp"
 #include "toolpath/support_paths.hpp"
 
 using namespace scaffold;
@@ -168,6 +169,39 @@ TEST(SupportPaths, ASpurOnlyFromARoundLoop) {
         EXPECT_GT(p.points.back().y, p.points.front().y);
     }
     EXPECT_EQ(spurs, 1);
+}
+
+// The spur of ASpurOnlyFromARoundLoop, with another pillar's loop beneath
+// its far end (a column up to z 2.8 at (31.2, 22)): the spur would be held
+// at both ends and not between them, a run rule (b) holds only where it
+// leaves each end across the footprint's edge, and this one meets the
+// other loop along its edge. It is left out; without that pillar it stays.
+TEST(SupportPaths, NoSpurWhereItWouldNotBeHeld) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    auto spurs_under_bar = [&](const std::vector<plan::Column>& columns, bool& candidate_held) {
+        plan::Scaffold sc;
+        sc.columns = columns;
+        sc.bridges.push_back({10, 21.3, 35, 21.3, 3.0, {}, 0, 0});
+        const auto paths = toolpath::make_paths(sc, st, s);
+        std::vector<toolpath::LayerPaths> below;  // printed before z 3.0
+        for (const auto& lp : paths.layers)
+            if (lp.layer < 14) below.push_back(lp);
+        // The spur add_spurs makes: from the loop's centre line to 0.3 mm past
+        // the bar's far line.
+        const double rc = plan::loop_shape(s.pillar_radius, s.support_width).centre_radius;
+        candidate_held = toolpath::segment_held({30, 20 + rc}, {30, 21.3 + s.support_width / 2 + 0.3}, 14, below, st, s);
+        int n = 0;
+        const auto* lp = at_layer(paths, 14);
+        if (lp)
+            for (const auto& p : lp->paths) n += p.points.size() == 2 && p.kind == toolpath::PathKind::Pillar;
+        return n;
+    };
+    bool held = false;
+    EXPECT_EQ(spurs_under_bar({pillar(30, 20, 5)}, held), 1);
+    EXPECT_TRUE(held);
+    EXPECT_EQ(spurs_under_bar({pillar(30, 20, 5), pillar(31.2, 22, 2.8)}, held), 0);
+    EXPECT_FALSE(held);
 }
 
 TEST(SupportPaths, AHoleNarrowerThanABeadIsNotPrinted) {
