@@ -191,6 +191,10 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
     std::array<Down, 3> down;
     for (int i = 0; i < 3; ++i) down[i].pieces.push_back({cols[i], -1e300, 1e300});
     double lo = -1e300;
+    // A tie that is no node (a twig among them) joins the three into one
+    // island there: above it they are columns that meet lower down, one
+    // column (METHOD), until a node lets each start afresh.
+    bool joined = false;
     for (double b : levels) {
         std::array<double, 3> k{};
         for (int i = 0; i < 3; ++i) {
@@ -198,8 +202,9 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
             k[i] = 1 / compliance(down[i], b);
         }
         const int best = static_cast<int>(std::max_element(k.begin(), k.end()) - k.begin());
-        const bool node = distinct_columns(meetings, chain_count, {ids[0], ids[1], ids[2]}, lo, b) &&
+        const bool node = !joined && distinct_columns(meetings, chain_count, {ids[0], ids[1], ids[2]}, lo, b) &&
                           std::all_of(k.begin(), k.end(), [&](double ki) { return ki >= kBraceColumnShare * k[best]; });
+        joined = !node;
         lo = b;
         const Down stiffest = down[best];
         for (int i = 0; i < 3; ++i) {
@@ -406,7 +411,14 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             std::vector<PillarChain> helpers;
             auto helper = [&](double x, double y) -> std::optional<PillarChain> {
                 const int above = bar_layers(b_top).front().second;
-                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true, b_top);
+                // Shaped as W is: a helper sized for the rule is a trunk
+                // beside a plain W, which is then a twig at every tie (under
+                // a quarter of its k, METHOD), and the triangle no brace.
+                Settings hs = s;
+                const Column& w0 = sc.columns[W.pieces.front()];
+                hs.pillar_radius = w0.radius;
+                if (!(w0.taper > 0)) hs.min_stiffness = 0;
+                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, hs, nullptr, TipPlaces::Any, true, b_top);
                 if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
                 // A helper is optional: only where it keeps a whole cell more
                 // than the gap on every layer (with half, a SuperSlicer benchy's

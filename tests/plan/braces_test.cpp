@@ -198,10 +198,10 @@ TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATw
     sc.columns.push_back(plain(30, 30, 40));
     sc.columns.push_back(plain(40, 30, 40));
     sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
-    auto stiffness = [&](const plan::Scaffold& scene) {
+    auto stiffness = [&](const plan::Scaffold& scene, const std::vector<double>& levels = {20.0}) {
         const auto chains = plan::pillar_chains(scene);
         const auto meets = plan::column_meetings(chains, scene, st, s);
-        return plan::tied_stiffness({&chains[0], &chains[1], &chains[2]}, {0, 1, 2}, {20.0}, 0.0, meets,
+        return plan::tied_stiffness({&chains[0], &chains[1], &chains[2]}, {0, 1, 2}, levels, 0.0, meets,
                                     static_cast<int>(chains.size()), scene, st, s);
     };
     EXPECT_NEAR(plan::chain_compliance(plan::pillar_chains(sc)[0], 20, sc, st, s), 1.157770, 1e-6);
@@ -225,4 +225,12 @@ TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATw
     plan::Scaffold twig = sc;
     twig.columns[1].radius = 0.6;
     EXPECT_NEAR(stiffness(twig), 0.10797, 1e-4);
+    // Tied at 10 and 20 mm: at 10 the twig (0.0978 x 8 = 0.782 N/mm against
+    // 8 x 0.8637 = 6.91) makes no node, and the tie joins the three into one
+    // island; above it they are columns that meet lower down, one column
+    // (METHOD), so the tie at 20 is no node either, whatever their k there:
+    // the top still follows the stiffest path down, 0.10797 N/mm.
+    EXPECT_NEAR(stiffness(twig, {10.0, 20.0}), 0.10797, 1e-4);
+    // Without the twig both ties are nodes, and the top stands far more.
+    EXPECT_GT(stiffness(sc, {10.0, 20.0}), 5 * 0.10797);
 }
