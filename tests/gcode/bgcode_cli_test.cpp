@@ -35,7 +35,8 @@ int run(const std::string& args) {
 
 TEST(BgcodeCli, BinaryOutputHasTheCommandsOfTheAsciiOutput) {
     if (!have_program()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    std::string dir = testing::TempDir() + "/bgcode_cli";
+    const scaffold::testing::TempPath dir_tmp("bgcode_cli");
+    const std::string& dir = dir_tmp.path;
     fs::create_directories(dir);
     std::string ascii = gunzip(std::string(SCAFFOLD_TEST_DATA) + "/corpus/overhang_test.prusaslicer25.nosup.gcode.gz");
     ASSERT_FALSE(ascii.empty());
@@ -81,7 +82,6 @@ TEST(BgcodeCli, BinaryOutputHasTheCommandsOfTheAsciiOutput) {
         ASSERT_EQ(run(dir + "/in.bgcode --output-format ascii -o " + dir + "/out.txt"), 0);
         EXPECT_TRUE(commands(read_all(dir + "/out.txt")) == same_input);
     }
-    fs::remove_all(dir);
 }
 
 namespace {
@@ -96,7 +96,8 @@ double value_of(const std::string& text, const std::string& key) {
 // support, in ASCII comments and in binary print metadata alike.
 TEST(BgcodeCli, GramsAndCostFollowTheSupport) {
     if (!have_program()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    std::string dir = testing::TempDir() + "/bgcode_cli_totals";
+    const scaffold::testing::TempPath dir_tmp("bgcode_cli_totals");
+    const std::string& dir = dir_tmp.path;
     fs::create_directories(dir);
     std::string ascii = gunzip(std::string(SCAFFOLD_TEST_DATA) + "/corpus/overhang_test.prusaslicer25.nosup.gcode.gz");
     for (auto [from, to] : {std::pair<std::string, std::string>{"\n; filament_density = 0\n", "\n; filament_density = 1.25\n"},
@@ -119,5 +120,4 @@ TEST(BgcodeCli, GramsAndCostFollowTheSupport) {
         EXPECT_NEAR(g, cm3 * 1.25, 0.02);
         EXPECT_NEAR(cost, g * 20 / 1000, 0.011);
     }
-    fs::remove_all(dir);
 }

@@ -255,7 +255,8 @@ TEST(Bgcode, DamagedFilesGiveOneLineErrorsNamingBlockAndOffset) {
 
 // read_file recognises binary G-code by its content, whatever the name.
 TEST(Bgcode, ReadFileDetectsBinaryByContent) {
-    std::string path = testing::TempDir() + "/bgcode_by_content.gcode";
+    const scaffold::testing::TempPath path_tmp("bgcode_by_content.gcode");
+    const std::string& path = path_tmp.path;
     {
         std::ofstream out(path, std::ios::binary);
         out << small_file();
@@ -271,7 +272,8 @@ TEST(Bgcode, ReadFileDetectsBinaryByContent) {
 TEST(Bgcode, WriteOutputKeepsOrConvertsTheFormat) {
     std::string bytes = load(kData + "bgcode/overhang_test.prusaslicer25.nosup.prusaslicer.bgcode");
     Program p = parse(bytes, "t");
-    std::string out = testing::TempDir() + "/bgcode_out";
+    const scaffold::testing::TempPath out_tmp("bgcode_out");
+    const std::string& out = out_tmp.path;
     write_output(out, p, {});
     EXPECT_TRUE(load(out) == bytes);
     write_output(out, p, {}, OutputFormat::Ascii);

@@ -6,9 +6,11 @@
 // of its corpus/wild.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <sstream>
 
@@ -27,21 +29,22 @@ bool have_programs() {
            fs::exists(std::string(SCAFFOLD_BINARY_DIR) + "/scaffold-check");
 }
 
-std::string dir_for(const std::string& test) {
-    std::string d = ::testing::TempDir() + "/gcode3mf_" + test;
-    fs::remove_all(d);
-    fs::create_directories(d);
+std::unique_ptr<scaffold::testing::TempPath> dir_for(const std::string& test) {
+    auto d = std::make_unique<scaffold::testing::TempPath>("gcode3mf_" + test);
+    fs::remove_all(d->path);
+    fs::create_directories(d->path);
     return d;
 }
 
 // Runs a program of the build with `args` (a shell line); its stderr in *err.
 int run(const std::string& program, const std::string& args, std::string* err = nullptr, const std::string& env = "") {
     // One per test: ctest runs the tests of this file side by side.
-    const std::string err_file = ::testing::TempDir() + "/gcode3mf_stderr_" +
-                                 ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt";
+    const std::string err_file = scaffold::testing::temp_path(std::string("gcode3mf_stderr_") +
+                                 ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".txt");
     std::string cmd = env + " " + std::string(SCAFFOLD_BINARY_DIR) + "/" + program + " " + args + " 2> " + err_file;
     int rc = std::system(cmd.c_str());
     if (err) *err = load_file(err_file);
+    std::remove(err_file.c_str());
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 
@@ -99,7 +102,8 @@ std::vector<double> expect_plates_as_plain(const std::string& dir, const std::st
 
 TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("plates");
+    const auto dir_tmp = dir_for("plates");
+    const std::string& dir = dir_tmp->path;
     const std::vector<std::string> plates = {bambu_gcode({}), bambu_gcode({false, false, 150, 60})};
     const std::string in = pack(bambu_members(plates));
     write_file(dir + "/in.gcode.3mf", in);
@@ -156,7 +160,8 @@ TEST(Gcode3mfCli, PlatesAsThePlainPathOtherMembersAsStored) {
 // slicer's first header line still first.
 TEST(Gcode3mfCli, OrcaHookOnTheTemporaryPlainPlate) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("orca_hook");
+    const auto dir_tmp = dir_for("orca_hook");
+    const std::string& dir = dir_tmp->path;
     const std::string plate = bambu_gcode({});
     write_file(dir + "/plate.gcode", plate);
     write_file(dir + "/tmp_plate.gcode", plate);
@@ -175,7 +180,8 @@ TEST(Gcode3mfCli, HeaderBlockTotalsRaisedByTheSupport) {
     // (its "volume [cm^3]" holds mm^3): each total grows by the support's
     // filament, as the "; filament used" lines at the end do.
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("header_totals");
+    const auto dir_tmp = dir_for("header_totals");
+    const std::string& dir = dir_tmp->path;
     const std::string plate = bambu_gcode({});
     write_file(dir + "/plate.gcode", plate);
     ASSERT_EQ(run("scaffold", "-q " + dir + "/plate.gcode -o " + dir + "/out.gcode"), 0);
@@ -200,7 +206,8 @@ TEST(Gcode3mfCli, HeaderBlockTotalsRaisedByTheSupport) {
 
 TEST(Gcode3mfCli, VasePlateRefusesTheWholeFile) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("vase");
+    const auto dir_tmp = dir_for("vase");
+    const std::string& dir = dir_tmp->path;
     BambuPlate vase;
     vase.spiral = true;
     const std::string in = pack(bambu_members({bambu_gcode({}), bambu_gcode(vase)}));
@@ -215,7 +222,8 @@ TEST(Gcode3mfCli, VasePlateRefusesTheWholeFile) {
 
 TEST(Gcode3mfCli, BadArchivesOneLineInputUntouched) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("bad");
+    const auto dir_tmp = dir_for("bad");
+    const std::string& dir = dir_tmp->path;
     const std::string good = pack(bambu_members({bambu_gcode({})}));
     std::vector<ZipMember> dotdot = bambu_members({bambu_gcode({})});
     dotdot.push_back({"../../outside.txt", "x"});
@@ -262,7 +270,8 @@ TEST(Gcode3mfCli, BadArchivesOneLineInputUntouched) {
 
 TEST(Gcode3mfCli, Md5MismatchOnInputWarnsAndGoesOn) {
     if (!have_programs()) GTEST_SKIP() << "skipped: no scaffold program in " << SCAFFOLD_BINARY_DIR;
-    const std::string dir = dir_for("md5");
+    const auto dir_tmp = dir_for("md5");
+    const std::string& dir = dir_tmp->path;
     std::vector<ZipMember> m = bambu_members({bambu_gcode({})});
     for (ZipMember& z : m)
         if (z.name == "Metadata/plate_1.gcode.md5") z.data = std::string(32, '0');
@@ -291,7 +300,8 @@ TEST(Gcode3mfCli, WildBambuAndOrcaPlates) {
         const std::string name = line.substr(0, line.find('\t'));
         if (name.rfind("bambustudio", 0) != 0 && name.rfind("orcaslicer", 0) != 0) continue;
         SCOPED_TRACE(name);
-        const std::string dir = dir_for("wild_" + name);
+        const auto dir_tmp = dir_for("wild_" + name);
+        const std::string& dir = dir_tmp->path;
         const std::string plate = load_file((wild / (name + ".gcode.gz")).string());
         ASSERT_FALSE(plate.empty());
         const std::string in = pack(bambu_members({plate}));

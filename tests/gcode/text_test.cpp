@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/files.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -21,7 +23,8 @@ std::string slurp(const std::string& path) {
 }  // namespace
 
 TEST(Text, MappedFileReadsLikeTheStringAndSurvivesRelease) {
-    std::string path = ::testing::TempDir() + "/text_mapped.gcode";
+    const scaffold::testing::TempPath path_tmp("text_mapped.gcode");
+    const std::string& path = path_tmp.path;
     std::string content = "G1 X1 Y2\r\n; c\xff\n";
     { std::ofstream(path, std::ios::binary) << content; }
     Text t = Text::load(path);
@@ -39,7 +42,8 @@ TEST(Text, MappedFileReadsLikeTheStringAndSurvivesRelease) {
 }
 
 TEST(Text, EmptyAndMissingFiles) {
-    std::string path = ::testing::TempDir() + "/text_empty.gcode";
+    const scaffold::testing::TempPath path_tmp("text_empty.gcode");
+    const std::string& path = path_tmp.path;
     { std::ofstream(path, std::ios::binary); }
     EXPECT_TRUE(Text::load(path).empty());
     EXPECT_THROW(read_file(path), scaffold::Error);
@@ -49,7 +53,8 @@ TEST(Text, EmptyAndMissingFiles) {
 // A file larger than the reader's and the writer's windows, rewritten in
 // place (the slicer hook): the map of the old file must outlive the rename.
 TEST(Text, LargeMappedFileRewrittenInPlace) {
-    std::string path = ::testing::TempDir() + "/text_large.gcode";
+    const scaffold::testing::TempPath path_tmp("text_large.gcode");
+    const std::string& path = path_tmp.path;
     std::string content;
     content.reserve(40u << 20);
     for (int i = 0; content.size() < (40u << 20); ++i) content += "; filler line " + std::to_string(i) + "\n";

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/files.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -43,7 +45,8 @@ TEST(Writer, InsertAndReplaceKeepLineEndings) {
 }
 
 TEST(Writer, AtomicWriteReplacesAndFailureLeavesOriginal) {
-    std::string path = ::testing::TempDir() + "/writer_atomic.gcode";
+    const scaffold::testing::TempPath path_tmp("writer_atomic.gcode");
+    const std::string& path = path_tmp.path;
     { std::ofstream(path) << "G1 X0\n"; }
     Program p = parse("G1 X1\nG1 X2\n", "t");
     write_output(path, p, {{1, false, "; inserted\n"}});

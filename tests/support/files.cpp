@@ -2,10 +2,25 @@
 
 #include <zlib.h>
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 namespace scaffold::testing {
+
+std::string temp_path(const std::string& name) {
+    return ::testing::TempDir() + "/" + name + "." + std::to_string(::getpid());
+}
+
+TempPath::TempPath(const std::string& name) : path(temp_path(name)) {}
+
+TempPath::~TempPath() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+}
 
 std::string load_file(const std::string& path) {
     if (path.size() > 3 && path.substr(path.size() - 3) == ".gz") {
