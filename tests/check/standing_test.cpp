@@ -207,6 +207,42 @@ TEST(Standing, ThreePillarsTiedInATriangleBrace) {
     EXPECT_NEAR(s.weakest[0].height, 20.2, 1e-6);  // above the node's own slab, 19.8 to 20.0
 }
 
+TEST(Standing, ATieWithATwigJoinsTheColumnsAboveIt) {
+    // Two rings at (100, 100) and (120, 100) and a thin one at (100, 120)
+    // (centre line 0.375 mm: I about (0.375 / 0.775)^3 = 0.113 of a ring's),
+    // 40 mm tall, tied in a triangle at 10 and at 20 mm. At 10 the thin one
+    // stands about 0.113 x 7.10 = 0.80 N/mm against 7.10: a twig, no node,
+    // and the bars join the three into one island. At 20, followed down the
+    // stiffest path below 10, it would stand 1 / ((20^3 - 10^3) / 7097.8 +
+    // (10^3 / 3) / (0.113 x 2365.9)) = 0.45 N/mm against 0.887, over a
+    // quarter: counted as a node were the columns distinct there. They met
+    // at 10 (METHOD: columns that meet lower down are one column), so no
+    // brace. The weakest is the thin ring's top, following the stiffest path
+    // down from the tie at 20: its 48-gon of beads has I = 24 (l w d^2 +
+    // l w^3 / 12 + w l^3 / 12) with l = 0.75 sin(pi/48) = 0.049052, d =
+    // 0.375 cos(pi/48) = 0.374197: 0.083226 mm^4, E I = 291.29. From 40
+    // down to 20.2, 19.8^3 / (3 x 291.29) = 8.882 mm/N; the two layers of
+    // the tie, hundreds of mm^4, nothing; a ring from 19.8 to the bed,
+    // (40^3 - 20.2^3) / 3 / 2365.9 = 7.856 (the stiffest path at 10 is a
+    // ring's too), less its two layers in the tie at 10 (lever about 30:
+    // 2 x 0.2 x 30^2 / 2365.9 = 0.152): k = 1 / 16.586 = 0.0603 N/mm.
+    auto r = run(rings({{100, 100}, {120, 100}}, 40, [](SynthGcode& g, double z) {
+        g.type("Support material");
+        g.circle(100, 120, 0.375, 48);
+        const bool tie = (z > 9.9 && z < 10.3) || (z > 19.9 && z < 20.3);
+        if (!tie) return;
+        bar(g, 100 + kRingR, 100, 120 - kRingR, 100);
+        bar(g, 120 - 0.55, 100 + 0.55, 100 + 0.3, 120 - 0.3);
+        bar(g, 100, 120 - 0.375, 100, 100 + kRingR);
+    }));
+    EXPECT_EQ(r.standing.added.braces, 0) << check::report_text(r);
+    EXPECT_NEAR(r.standing.added.weakest_k, 0.0603, 0.0003) << check::report_text(r);
+    ASSERT_FALSE(r.standing.added.weakest.empty());
+    EXPECT_NEAR(r.standing.added.weakest[0].x, 100, 0.5);
+    EXPECT_NEAR(r.standing.added.weakest[0].y, 120, 0.5);
+    EXPECT_NEAR(r.standing.added.weakest[0].height, 40, 1e-6);
+}
+
 TEST(Standing, ThreePillarsInARowAreNoBrace) {
     // The same three rings on one line, tied at 20 mm: they can all bend
     // across the line together; no brace, each top as a ring alone.
