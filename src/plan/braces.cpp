@@ -318,6 +318,13 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // with a smaller margin (the give is the connectors' worst case).
         const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
         if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
+        // Helpers are shaped as W is: one sized for the rule is a trunk beside
+        // a plain W, which is then a twig at every tie (under a quarter of its
+        // k, METHOD), and the triangle no brace. (Set once per W: Settings
+        // holds strings, and helpers are tried many times.)
+        Settings helper_settings = s;
+        helper_settings.pillar_radius = sc.columns[W.pieces.front()].radius;
+        if (!(sc.columns[W.pieces.front()].taper > 0)) helper_settings.min_stiffness = 0;
         auto add_tie = [&](std::vector<double>& ties, double want) {
             const double b = snap_down(want);
             if (b > W.base + 1 && !bar_layers(b).empty() && (ties.empty() || b > ties.back() + kEps)) ties.push_back(b);
@@ -411,14 +418,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             std::vector<PillarChain> helpers;
             auto helper = [&](double x, double y) -> std::optional<PillarChain> {
                 const int above = bar_layers(b_top).front().second;
-                // Shaped as W is: a helper sized for the rule is a trunk
-                // beside a plain W, which is then a twig at every tie (under
-                // a quarter of its k, METHOD), and the triangle no brace.
-                Settings hs = s;
-                const Column& w0 = sc.columns[W.pieces.front()];
-                hs.pillar_radius = w0.radius;
-                if (!(w0.taper > 0)) hs.min_stiffness = 0;
-                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, hs, nullptr, TipPlaces::Any, true, b_top);
+                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, helper_settings, nullptr, TipPlaces::Any,
+                                         true, b_top);
                 if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
                 // A helper is optional: only where it keeps a whole cell more
                 // than the gap on every layer (with half, a SuperSlicer benchy's
