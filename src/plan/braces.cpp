@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <limits>
+#include <climits>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <tuple>
@@ -38,6 +39,32 @@ double min_angle(double ax, double ay, double bx, double by, double cx, double c
         return d > 0 ? std::acos(std::clamp((ux * vx + uy * vy) / d, -1.0, 1.0)) * 180 / std::numbers::pi : 0.0;
     };
     return std::min({angle(ax, ay, bx, by, cx, cy), angle(bx, by, cx, cy, ax, ay), angle(cx, cy, ax, ay, bx, by)});
+}
+
+struct Ring {
+    double x, y, r;
+};
+
+// A pillar's centre and outer radius on the layer at zc, or at its top
+// where it ends under a bar at b.
+std::optional<Ring> ring_at(const PillarChain& p, const Scaffold& sc, const Settings& s, double zc, double b) {
+    if (p.base > zc) return std::nullopt;
+    if (const Column* c = piece_at(p, sc, zc)) {
+        Ring r{0, 0, column_radius_at(*c, zc, s)};
+        column_centre_at(*c, zc, r.x, r.y);
+        return r;
+    }
+    if (std::abs(p.top - b) < kEps) {
+        const Column& c = sc.columns[p.pieces.back()];
+        return Ring{c.x1, c.y1, column_radius_at(c, c.z1, s)};
+    }
+    return std::nullopt;
+}
+
+// Whether two pillars' loops touch on the layer at z (column_meetings' test).
+bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc, const Settings& s, double z) {
+    const auto p = ring_at(a, sc, s, z, -1), q = ring_at(b, sc, s, z, -1);
+    return p && q && std::hypot(p->x - q->x, p->y - q->y) <= p->r + q->r + s.resolution;
 }
 
 }  // namespace
@@ -94,24 +121,7 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
     for (const layers::Layer& layer : stack.layers)
         if (!layer.purge) tops.push_back(layer.z);
     std::sort(tops.begin(), tops.end());
-    struct Ring {
-        double x, y, r;
-    };
-    // A pillar's centre and outer radius on the layer at zc, or at its top
-    // where it ends under a bar at b.
-    auto ring = [&](const PillarChain& p, double zc, double b) -> std::optional<Ring> {
-        if (p.base > zc) return std::nullopt;
-        if (const Column* c = piece_at(p, sc, zc)) {
-            Ring r{0, 0, column_radius_at(*c, zc, s)};
-            column_centre_at(*c, zc, r.x, r.y);
-            return r;
-        }
-        if (std::abs(p.top - b) < kEps) {
-            const Column& c = sc.columns[p.pieces.back()];
-            return Ring{c.x1, c.y1, column_radius_at(c, c.z1, s)};
-        }
-        return std::nullopt;
-    };
+    auto ring = [&](const PillarChain& p, double zc, double b) { return ring_at(p, sc, s, zc, b); };
     // A bar of the plan (a brace ties at a node, which METHOD counts apart)
     // on its first layer: every pillar it passes through or rests on.
     for (const Bridge& br : sc.bridges) {
@@ -146,8 +156,7 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
             if (a.x0 > b.x1 + w || b.x0 > a.x1 + w || a.y0 > b.y1 + w || b.y0 > a.y1 + w) continue;
             bool touching = false;
             for (double z : tops) {
-                const auto p = ring(chains[i], z, -1), q = ring(chains[j], z, -1);
-                const bool touch = p && q && std::hypot(p->x - q->x, p->y - q->y) <= p->r + q->r + s.resolution;
+                const bool touch = rings_touch(chains[i], chains[j], sc, s, z);
                 if (touch && !touching) out.push_back({z, static_cast<int>(i), static_cast<int>(j)});
                 touching = touch;
             }
@@ -214,6 +223,74 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
     }
     return 1 / (compliance(down[0], cols[0]->hold) + give);
 }
+
+namespace {
+
+// The stiffness of pillar wi at its own top as METHOD's validator walks
+// it: where it met another lower down, they are one island there (a bar
+// on both, or loops touching up to the last layer of the run), and the
+// walk goes on down the stiffer of the two, from the highest such layer.
+double own_top_stiffness(int wi, const std::vector<PillarChain>& chains, const std::vector<ColumnMeeting>& meets,
+                         const Scaffold& sc, const layers::LayerStack& stack, const Settings& s,
+                         const std::vector<std::pair<double, int>>& tops) {
+    const PillarChain& W = chains[wi];
+    const double below_top = W.top - 1.5 * s.layer_height;
+    double zm = -1e300;
+    int other = -1;
+    for (const ColumnMeeting& m : meets) {
+        if ((m.a != wi && m.b != wi) || m.z >= below_top) continue;
+        const int o = m.a == wi ? m.b : m.a;
+        double z = m.z;
+        for (auto it = std::upper_bound(tops.begin(), tops.end(), std::make_pair(m.z + kEps, INT_MAX));
+             it != tops.end() && it->first < below_top && rings_touch(W, chains[o], sc, s, it->first); ++it)
+            z = it->first;
+        if (z > zm) {
+            zm = z;
+            other = o;
+        }
+    }
+    double below = chain_compliance(W, W.top, sc, stack, s, -1e300, zm);
+    if (other >= 0) below = std::min(below, chain_compliance(chains[other], W.top, sc, stack, s, -1e300, zm));
+    return 1 / (chain_compliance(W, W.top, sc, stack, s, zm) + below);
+}
+
+// The column W (under a bar end) dropped again from the same top, as wide
+// as fits at any share of the Standing rule's taper; its pieces replaced
+// where that stands stiffer at W's hold. Only a column whose own top falls
+// short as the validator walks it: one that met a stiffer column lower down
+// stands as that one does (elephant plates: 8 % more filament for nothing).
+void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, const std::vector<ColumnMeeting>& meets,
+                  const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
+                  const std::vector<std::pair<double, int>>& tops) {
+    const PillarChain& W = chains[wi];
+    const Column top = sc.columns[W.pieces.back()], foot = sc.columns[W.pieces.front()];
+    if (top.top != Top::Bridge || W.pieces.back() - W.pieces.front() + 1 != static_cast<int>(W.pieces.size())) return;
+    if (own_top_stiffness(wi, chains, meets, sc, stack, s, tops) >= kGiveMargin * s.min_stiffness) return;
+    const auto above = std::upper_bound(tops.begin(), tops.end(), std::make_pair(top.z1 + kEps, INT_MAX));
+    if (above == tops.end()) return;
+    const bool thin_above = top.contact_z > 0 && top.hold_z > top.z1 + kEps;
+    auto chain = drop_pillar(top.x1, top.y1, above->second, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true,
+                             top.hold_z, foot.give, thin_above, true);
+    if (!chain || chain->empty()) return;
+    const Column& new_top = chain->back();
+    if (std::abs(new_top.z1 - top.z1) > kEps || std::hypot(new_top.x1 - top.x1, new_top.y1 - top.y1) > kEps) return;
+    // Judged as the braces judge W: its pieces' loops, summed layer by layer.
+    const std::size_t before = sc.columns.size();
+    PillarChain wider{{}, chain->front().z0, new_top.z1, W.hold};
+    for (Column& c : *chain) {
+        c.point = foot.point;
+        wider.pieces.push_back(static_cast<int>(sc.columns.size()));
+        sc.columns.push_back(c);
+    }
+    const bool stiffer = chain_compliance(wider, W.hold, sc, stack, s) < chain_compliance(W, W.hold, sc, stack, s) - kEps;
+    sc.columns.resize(before);
+    if (!stiffer) return;
+    const auto first = sc.columns.begin() + W.pieces.front();
+    sc.columns.insert(sc.columns.erase(first, first + static_cast<std::ptrdiff_t>(W.pieces.size())), chain->begin(),
+                      chain->end());
+}
+
+}  // namespace
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
                const std::vector<Bridge>& forbidden) {
@@ -309,6 +386,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     int added = 0;
     const int weak_count = static_cast<int>(chains.size());  // helpers added below are not braced in turn
     std::vector<char> braced(chains.size(), 0);                // a corner of a triangle placed already
+    std::vector<int> untied;                                   // weak, and no triangle found
     for (int wi = 0; wi < weak_count; ++wi) {
         if (braced[wi]) continue;
         const PillarChain W = chains[wi];
@@ -386,7 +464,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 }
             }
         }
-        if (tries.empty()) continue;
+        if (tries.empty()) {
+            untied.push_back(wi);
+            continue;
+        }
         // The triangle that ties W at these levels: bars, the partners among
         // the corners, and the helpers it stands up; no bars if none does.
         auto tie_up = [&](const std::vector<double>& levels, int new_helpers)
@@ -513,7 +594,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 }
                 sc.columns.resize(columns_before);
             }
-        if (bars.empty()) continue;
+        if (bars.empty()) {
+            untied.push_back(wi);
+            continue;
+        }
         // The helpers chosen, back where their pieces' indices point.
         sc.columns.insert(sc.columns.end(), helper_columns.begin(), helper_columns.end());
         braced[wi] = 1;
@@ -525,6 +609,12 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         for (const Bridge& br : bars) sc.bridges.push_back(br);
         added += static_cast<int>(bars.size());
     }
+    // Weak columns under a bar that no triangle ties: the widest way down
+    // that fits, at any share of the taper (the plan's own drop searches it
+    // only at a quarter or less, leaving the rest to the braces). Last
+    // first: a column's pieces are replaced where they stand in the list.
+    for (auto it = untied.rbegin(); it != untied.rend(); ++it)
+        if (!braced[*it]) widen_untied(sc, *it, chains, meets, stack, obs, s, tops);
     return added;
 }
 

@@ -71,7 +71,10 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
 // Ties each pillar weaker than target_stiffness at the top of what it holds
 // to two neighbours (triangles whose angles are all 30 degrees or more), at
 // every kBraceStep above the highest base of the three, with bars clear of
-// the model by the XY gap and not near a forbidden bar. Returns the bars added.
+// the model by the XY gap and not near a forbidden bar. A pillar under a bar
+// end that no triangle ties, and whose own top falls short as the validator
+// walks it, is dropped again as wide as fits (drop_pillar's `widest`) where
+// that stands stiffer. Returns the bars added.
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
                const Settings& settings, const std::vector<Bridge>& forbidden);
 

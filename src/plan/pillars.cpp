@@ -680,7 +680,8 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obs,
                                                const Settings& s, const Trunks* trunks, TipPlaces places,
-                                               bool fit_base, double hold, double give, bool thin_above) {
+                                               bool fit_base, double hold, double give, bool thin_above,
+                                               bool widest) {
     // Whether a pillar stands at all (fit_base false: a bridge end asked
     // about) is the plain column's question: a narrower one fits wherever a
     // wider one does.
@@ -720,9 +721,10 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                 // the widest that fits: the step between it and the share
                 // that failed, halved three times (an elephant's column
                 // leaning round its belly: 1.21 N/mm at 0.25, 2.39 at 0.44).
-                // Above it the step is not searched: wider columns there
-                // cost more than they gave (figure.prusaslicer25 +41 %).
-                double lo = stiff, hi = stiff <= kWidestBelow ? failed : stiff;
+                // Above it the step is searched only when asked (`widest`):
+                // where braces can tie the column, they cost less
+                // (figure.prusaslicer25: +41 % of its support otherwise).
+                double lo = stiff, hi = stiff <= kWidestBelow || widest ? failed : stiff;
                 for (int i = 0; i < 3 && hi > lo && !stands(*chain); ++i) {
                     const double mid = (lo + hi) / 2;
                     if (auto wider = shaped(mid, neck)) {

@@ -55,13 +55,16 @@ int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Setting
 // of what will stand on it (its own top if higher), with `give` mm/N of
 // that in series; where the widened one finds no way down, the plain one.
 // Under a bar that holds more above it the top is not narrowed to a tip,
-// unless a thin column stands on it (`thin_above`: lean_in's).
+// unless a thin column stands on it (`thin_above`: lean_in's). `widest`:
+// short of the rule, the widest that fits at any share of the taper (else
+// only at a quarter or less: elsewhere braces cost less).
 enum class TipPlaces { Any, UnderSheet, Beside };
 std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_layer, Top top,
                                                const layers::LayerStack& stack, const Obstacles& obstacles,
                                                const Settings& settings, const Trunks* trunks = nullptr,
                                                TipPlaces places = TipPlaces::Any, bool fit_base = true,
-                                               double hold = 0, double give = 0, bool thin_above = false);
+                                               double hold = 0, double give = 0, bool thin_above = false,
+                                               bool widest = false);
 
 // A tip's column that does not stand by METHOD's Standing rule as planned
 // (found with less taper than the rule asks), widened along the same way
