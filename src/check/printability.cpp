@@ -17,6 +17,7 @@
 #include "gcode/lexer.hpp"
 #include "layers/crossing.hpp"
 #include "layers/layer_stack.hpp"
+#include "layers/objects.hpp"
 #include "layers/raster.hpp"
 #include "layers/regions.hpp"
 
@@ -756,14 +757,31 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     // under min_region_mm2 that continue nothing above or below are noise.
     const std::vector<char> counts = o.min_region_mm2 > 0 ? layers::kept_regions(unheld_regions, proto, h_nom, o.min_region_mm2)
                                                           : std::vector<char>(unheld_regions.size(), 1);
-    for (std::size_t k = 0; k < unheld_regions.size(); ++k)
-        if (counts[k]) r.unheld_regions_mm2 += static_cast<double>(unheld_regions[k].cells.size()) * proto.cell_area();
-    if (r.unheld_regions_mm2 > o.tolerance_mm2) {
+    // Counted per model (METHOD): each region goes to the object under or
+    // nearest it (its first cell, within 5 mm); what lies beside none is a
+    // model of its own here.
+    const layers::ObjectMap objects(stack, [&](const layers::Layer& l, const layers::Segment& sg) {
+        return layers::model_bead(l, sg) && !is_support_move(out.moves[sg.move]);
+    });
+    r.models = objects.count();
+    std::vector<double> per_model(static_cast<std::size_t>(objects.count()) + 1, 0.0);
+    for (std::size_t k = 0; k < unheld_regions.size(); ++k) {
+        if (!counts[k]) continue;
+        const layers::Region& g = unheld_regions[k];
+        const double a = static_cast<double>(g.cells.size()) * proto.cell_area();
+        r.unheld_regions_mm2 += a;
+        const int m = g.cells.empty() ? -1 : objects.at(proto.cx(g.cells.front().i), proto.cy(g.cells.front().j), 5.0);
+        per_model[static_cast<std::size_t>(m + 1)] += a;
+    }
+    r.unheld_worst_model_mm2 = *std::max_element(per_model.begin(), per_model.end());
+    if (r.unheld_worst_model_mm2 > o.tolerance_mm2) {
         std::string what = "unheld area " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
                            fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + ")";
         if (o.min_region_mm2 > 0)
             what += ", " + fixed(r.unheld_regions_mm2, 2) + " mm^2 of it not lone specks under " + fixed(o.min_region_mm2, 2) + " mm^2";
-        r.failures.push_back(what + ", more than the " + fixed(o.tolerance_mm2, 2) + " mm^2 tolerance");
+        if (r.models > 1) what += ", " + fixed(r.unheld_worst_model_mm2, 2) + " mm^2 on one of " + std::to_string(r.models) + " models";
+        r.failures.push_back(what + ", more than the " + fixed(o.tolerance_mm2, 2) + " mm^2 tolerance" +
+                             (r.models > 1 ? " per model" : ""));
     }
     if (r.collision_mm2 > 0) r.failures.push_back("support within the XY gap of the model: " + fixed(r.collision_mm2, 2) + " mm^2");
     if (r.bad_extrusions) r.failures.push_back(std::to_string(r.bad_extrusions) + " extrusions with a width out of bounds");
@@ -788,7 +806,9 @@ std::string report_text(const CheckReport& r) {
     std::string o = r.file + ": " + std::to_string(r.layers) + " layers\n";
     o += "  unheld area: " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 2) + " mm^2 (model " +
          fixed(r.unheld_model_mm2, 2) + ", support " + fixed(r.unheld_support_mm2, 2) + "); counted against the tolerance: " +
-         fixed(r.unheld_regions_mm2, 2) + " mm^2\n";
+         fixed(r.unheld_regions_mm2, 2) + " mm^2" +
+         (r.models > 1 ? " (the most on one of " + std::to_string(r.models) + " models: " + fixed(r.unheld_worst_model_mm2, 2) + " mm^2)" : "") +
+         "\n";
     for (const auto& w : r.worst_unheld)
         o += "    layer " + std::to_string(w.layer) + " z " + fixed(w.z, 2) + ": " + fixed(w.area_mm2, 2) +
              " mm^2 around (" + fixed(w.x, 1) + ", " + fixed(w.y, 1) + ")\n";
@@ -854,6 +874,8 @@ std::string report_json(const CheckReport& r) {
     o += "  \"layers\": " + std::to_string(r.layers) + ",\n";
     o += "  \"unheld_mm2\": " + fixed(r.unheld_model_mm2 + r.unheld_support_mm2, 3) + ",\n";
     o += "  \"unheld_regions_mm2\": " + fixed(r.unheld_regions_mm2, 3) + ",\n";
+    o += "  \"models\": " + std::to_string(r.models) + ",\n";
+    o += "  \"unheld_worst_model_mm2\": " + fixed(r.unheld_worst_model_mm2, 3) + ",\n";
     o += "  \"unheld_model_mm2\": " + fixed(r.unheld_model_mm2, 3) + ",\n";
     o += "  \"unheld_support_mm2\": " + fixed(r.unheld_support_mm2, 3) + ",\n";
     o += "  \"worst_unheld\": " + issues(r.worst_unheld) + ",\n";

@@ -24,11 +24,12 @@ struct CheckOptions {
     double max_bridge = -1;
     double dangling_end = 1.0;     // mm, unheld ends this short are held
     double resolution = 0.1;
-    // Unheld area allowed per file, for raster noise: a centre-line sample
-    // that falls just outside the reach marks a bead stretch of one sample
-    // (0.1 mm x 0.45 mm = 0.045 mm^2); 0.5 mm^2 is about a 1 mm stretch of
-    // one bead, far below any real overhang (the corpus inputs have 36 to
-    // 1145 mm^2).
+    // Unheld area allowed per model (METHOD reports unheld area per model;
+    // a plate's objects are the pieces of its model footprint,
+    // layers::ObjectMap), for raster noise: a centre-line sample that falls
+    // just outside the reach marks a bead stretch of one sample (0.1 mm x
+    // 0.45 mm = 0.045 mm^2); 0.5 mm^2 is about a 1 mm stretch of one bead,
+    // far below any real overhang (the corpus inputs have 36 to 1145 mm^2).
     double tolerance_mm2 = 0.5;
     // METHOD's speck rule, as the detector's --min-overhang-area applies it:
     // a lone unheld region smaller than this that continues no unheld region
@@ -51,6 +52,8 @@ struct CheckReport {
     double unheld_model_mm2 = 0;
     double unheld_support_mm2 = 0;
     double unheld_regions_mm2 = 0;  // in regions of at least min_region_mm2 (what fails)
+    int models = 0;                 // objects on the plate (pieces of the model's footprint)
+    double unheld_worst_model_mm2 = 0;  // the most of unheld_regions_mm2 on one of them (or beside none)
     std::vector<LayerIssue> worst_unheld;
     double collision_mm2 = 0;
     std::vector<LayerIssue> worst_collisions;

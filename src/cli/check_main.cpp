@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
         ("original", po::value<std::string>(), "the G-code this file was made from: lines not in it are support, and every line of it must appear unchanged and in order")
         ("json", "print the report as JSON")
         ("svg", po::value<std::string>(), "draw the worst layers (model grey, support blue, unheld red) into DIR")
-        ("tolerance-mm2", po::value<double>(&o.tolerance_mm2)->default_value(o.tolerance_mm2), "unheld area accepted per file as raster noise, mm^2 (about a 1 mm stretch of one bead)")
+        ("tolerance-mm2", po::value<double>(&o.tolerance_mm2)->default_value(o.tolerance_mm2), "unheld area accepted per model as raster noise, mm^2 (about a 1 mm stretch of one bead; a plate's models are the separate pieces of its footprint)")
         ("min-region-mm2", po::value<double>(&o.min_region_mm2)->default_value(o.min_region_mm2), "lone unheld regions smaller than this (that continue none on the layers just above or below) are reported but not counted against the tolerance, mm^2: the speck rule scaffold's --min-overhang-area applies; 0 counts every unheld cell")
         ("overhang-angle", po::value<double>(&o.overhang_angle_deg)->default_value(o.overhang_angle_deg), "steepest self-supporting wall, degrees from vertical")
         ("xy-gap", po::value<double>(&o.xy_gap)->default_value(o.xy_gap), "least horizontal distance from support to model, mm")

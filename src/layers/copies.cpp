@@ -6,20 +6,14 @@
 #include <unordered_map>
 
 #include "gcode/role.hpp"
+#include "layers/objects.hpp"
 #include "layers/raster.hpp"
-#include "layers/regions.hpp"
 
 namespace scaffold::layers {
 
 namespace {
 
 constexpr std::size_t kMaxObjects = 4096;  // more separate pieces than any plate: no plate of copies
-
-// A bead of an object: not a skirt or brim, a wipe tower or a purge line
-// (those belong to no copy; the first copy sees them from every copy's place).
-bool model_bead(const Layer& layer, const Segment& s) {
-    return !layer.purge && s.role != gcode::Role::Skirt && s.role != gcode::Role::WipeTower;
-}
 
 void extend(Bounds& b, double x, double y, double r) {
     b.min_x = std::min(b.min_x, x - r);
@@ -119,29 +113,17 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
             extend(all, s.x1, s.y1, s.width);
         }
     if (all.empty()) return no("no model");
-    // Objects: the pieces of the model's footprint over all layers, beads
-    // drawn at least kCopyJoin wide on cells of half that.
-    BitGrid grid(all.min_x - kCopyJoin, all.min_y - kCopyJoin, all.max_x + kCopyJoin, all.max_y + kCopyJoin,
-                 kCopyJoin / 2);
-    for (const Layer& layer : stack.layers)
-        for (const Segment& s : layer.segments)
-            if (model_bead(layer, s)) grid.draw_segment(s.x0, s.y0, s.x1, s.y1, std::max<double>(s.width, kCopyJoin));
-    const std::vector<std::vector<Cell>> pieces = components(grid);
-    if (pieces.size() < 2) return no("one object");
-    if (pieces.size() > kMaxObjects) return no(std::to_string(pieces.size()) + " separate pieces");
-    std::vector<int> label(static_cast<std::size_t>(grid.width()) * static_cast<std::size_t>(grid.height()), -1);
-    for (std::size_t p = 0; p < pieces.size(); ++p)
-        for (const Cell& c : pieces[p])
-            label[static_cast<std::size_t>(c.j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(c.i)] =
-                static_cast<int>(p);
-    std::vector<Object> objects(pieces.size());
+    // Objects: the pieces of the model's footprint over all layers.
+    const ObjectMap map(stack);
+    const auto count = static_cast<std::size_t>(map.count());
+    if (count < 2) return no("one object");
+    if (count > kMaxObjects) return no(std::to_string(count) + " separate pieces");
+    std::vector<Object> objects(count);
     for (Object& o : objects) o.beads.resize(stack.layers.size());
     for (std::size_t l = 0; l < stack.layers.size(); ++l)
         for (const Segment& s : stack.layers[l].segments) {
             if (!model_bead(stack.layers[l], s)) continue;
-            const int i = grid.col(s.x0), j = grid.row(s.y0);
-            if (i < 0 || j < 0 || i >= grid.width() || j >= grid.height()) return no("a bead off the grid");
-            const int p = label[static_cast<std::size_t>(j) * static_cast<std::size_t>(grid.width()) + static_cast<std::size_t>(i)];
+            const int p = map.at(s.x0, s.y0);
             if (p < 0) return no("a bead in no object");  // never: the bead's own cell is drawn
             Object& o = objects[static_cast<std::size_t>(p)];
             o.beads[l].push_back(static_cast<std::uint32_t>(&s - stack.layers[l].segments.data()));

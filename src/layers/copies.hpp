@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "layers/layer_stack.hpp"
+#include "layers/objects.hpp"
 
 namespace scaffold::layers {
 
@@ -30,7 +31,7 @@ struct Copies {
 
 // Beads closer than about this belong to one object (copies standing
 // nearer each other are one object: the plate is then planned whole).
-inline constexpr double kCopyJoin = 1.0;
+inline constexpr double kCopyJoin = kObjectJoin;
 // Largest difference, mm, between a bead of a copy moved onto the first and
 // the first's matching bead.
 inline constexpr double kCopyTolerance = 0.003;
