@@ -266,6 +266,19 @@ void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, 
     const Column top = sc.columns[W.pieces.back()], foot = sc.columns[W.pieces.front()];
     if (top.top != Top::Bridge || W.pieces.back() - W.pieces.front() + 1 != static_cast<int>(W.pieces.size())) return;
     if (own_top_stiffness(wi, chains, meets, sc, stack, s, tops) >= kGiveMargin * s.min_stiffness) return;
+    // Not a trunk: a branch standing on W's loop where it is now would be
+    // left in the air by a way down that steps elsewhere.
+    for (int k = 0; k < static_cast<int>(sc.columns.size()); ++k) {
+        const Column& c = sc.columns[static_cast<std::size_t>(k)];
+        if (c.base != Base::Column || (k >= W.pieces.front() && k <= W.pieces.back())) continue;
+        if (k > 0) {  // a piece stacked on the one before it (pillar_chains' test) is no branch
+            const Column& prev = sc.columns[static_cast<std::size_t>(k - 1)];
+            if (std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps) continue;
+        }
+        if (const auto r = ring_at(W, sc, s, c.z0, -1);
+            r && std::hypot(c.x0 - r->x, c.y0 - r->y) <= r->r + column_radius_at(c, c.z0, s) + s.support_width)
+            return;
+    }
     const auto above = std::upper_bound(tops.begin(), tops.end(), std::make_pair(top.z1 + kEps, INT_MAX));
     if (above == tops.end()) return;
     const bool thin_above = top.contact_z > 0 && top.hold_z > top.z1 + kEps;

@@ -310,3 +310,20 @@ TEST_F(TubeScene, AColumnThatMetAStifferOneLowerDownIsLeftAsItIs) {
     plan::add_braces(alone, st, obs, s, {});
     EXPECT_GT(alone.columns[0].taper, 0);
 }
+
+// The same column as a trunk: a branch stands on its loop at 20 mm. A way
+// down that stepped elsewhere would leave the branch in the air: the
+// column is left as it is (weak: the validator reports it).
+TEST_F(TubeScene, AColumnABranchStandsOnIsLeftAsItIs) {
+    sc.columns.push_back(plain(40, 40, 40));
+    plan::Column branch = plain(40.4, 40, 30);
+    branch.z0 = 20;
+    branch.base = plan::Base::Column;
+    branch.top = plan::Top::Contact;
+    sc.columns.push_back(branch);
+    ASSERT_EQ(plan::pillar_chains(sc).size(), 1u);  // the branch is no pillar of its own
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 0);
+    ASSERT_EQ(sc.columns.size(), 2u);
+    EXPECT_DOUBLE_EQ(sc.columns[0].taper, 0);
+    EXPECT_DOUBLE_EQ(sc.columns[0].z1, 40);
+}
