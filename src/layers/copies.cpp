@@ -104,18 +104,14 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
         if (why) *why = std::move(reason);
         return std::nullopt;
     };
-    Bounds all = empty_bounds();
     for (const Layer& layer : stack.layers)
-        for (const Segment& s : layer.segments) {
-            if (!model_bead(layer, s)) continue;
-            if (gcode::is_support(s.role) || layer.slicer_support) return no("the file holds support of its own");
-            extend(all, s.x0, s.y0, s.width);
-            extend(all, s.x1, s.y1, s.width);
-        }
-    if (all.empty()) return no("no model");
+        for (const Segment& s : layer.segments)
+            if (model_bead(layer, s) && (gcode::is_support(s.role) || layer.slicer_support))
+                return no("the file holds support of its own");
     // Objects: the pieces of the model's footprint over all layers.
     const ObjectMap map(stack);
     const auto count = static_cast<std::size_t>(map.count());
+    if (count == 0) return no("no model");
     if (count < 2) return no("one object");
     if (count > kMaxObjects) return no(std::to_string(count) + " separate pieces");
     std::vector<Object> objects(count);

@@ -61,6 +61,14 @@ std::optional<Ring> ring_at(const PillarChain& p, const Scaffold& sc, const Sett
     return std::nullopt;
 }
 
+// Whether column i is stacked on the piece just before it, where that one
+// ends (the next piece of the same pillar, not a branch).
+bool stacked_on_previous(const Scaffold& sc, int i) {
+    if (i <= 0 || sc.columns[i].base != Base::Column) return false;
+    const Column &c = sc.columns[i], &prev = sc.columns[i - 1];
+    return std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps;
+}
+
 // Whether two pillars' loops touch on the layer at z (column_meetings' test).
 bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc, const Settings& s, double z) {
     const auto p = ring_at(a, sc, s, z, -1), q = ring_at(b, sc, s, z, -1);
@@ -79,10 +87,7 @@ std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
             open = true;
             continue;
         }
-        // Stacked on the piece just before it, where that one ends.
-        const Column* prev = i > 0 ? &sc.columns[i - 1] : nullptr;
-        if (open && c.base == Base::Column && prev && std::abs(c.z0 - prev->z1) < kEps &&
-            std::hypot(c.x0 - prev->x1, c.y0 - prev->y1) < kEps) {
+        if (open && stacked_on_previous(sc, i)) {
             PillarChain& p = out.back();
             p.pieces.push_back(i);
             p.top = c.z1;
@@ -121,7 +126,6 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
     for (const layers::Layer& layer : stack.layers)
         if (!layer.purge) tops.push_back(layer.z);
     std::sort(tops.begin(), tops.end());
-    auto ring = [&](const PillarChain& p, double zc, double b) { return ring_at(p, sc, s, zc, b); };
     // A bar of the plan (a brace ties at a node, which METHOD counts apart)
     // on its first layer: every pillar it passes through or rests on.
     for (const Bridge& br : sc.bridges) {
@@ -131,7 +135,7 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
                                   static_cast<float>(br.y1)};
         std::vector<int> on;
         for (std::size_t i = 0; i < n; ++i)
-            if (const auto r = ring(chains[i], *first, br.z))
+            if (const auto r = ring_at(chains[i], sc, s, *first, br.z))
                 if (layers::segment_distance(r->x, r->y, seg) <= r->r + w) on.push_back(static_cast<int>(i));
         for (std::size_t a = 0; a < on.size(); ++a)
             for (std::size_t b = a + 1; b < on.size(); ++b) out.push_back({br.z, on[a], on[b]});
@@ -270,11 +274,8 @@ void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, 
     // left in the air by a way down that steps elsewhere.
     for (int k = 0; k < static_cast<int>(sc.columns.size()); ++k) {
         const Column& c = sc.columns[static_cast<std::size_t>(k)];
-        if (c.base != Base::Column || (k >= W.pieces.front() && k <= W.pieces.back())) continue;
-        if (k > 0) {  // a piece stacked on the one before it (pillar_chains' test) is no branch
-            const Column& prev = sc.columns[static_cast<std::size_t>(k - 1)];
-            if (std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps) continue;
-        }
+        if (c.base != Base::Column || (k >= W.pieces.front() && k <= W.pieces.back()) || stacked_on_previous(sc, k))
+            continue;
         if (const auto r = ring_at(W, sc, s, c.z0, -1);
             r && std::hypot(c.x0 - r->x, c.y0 - r->y) <= r->r + column_radius_at(c, c.z0, s) + s.support_width)
             return;
