@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -296,11 +297,41 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
     return Settle::Unheld;
 }
 
+// The column a drop starts from, its top at z1: tapered to a tip at the
+// top (a contact, and a bridge end too, which the narrow top holds as well
+// and which then fits closer to the model), no wider than the slenderness
+// limit asks, sized for what stands on it up to `hold` with `give` more.
+Column plain_column(Top top, double z1, double hold, double give, const Settings& s) {
+    Column proto;
+    proto.top = top;
+    proto.z1 = z1;
+    proto.contact_z = z1;
+    // Tall pillars wobble: keep height / diameter within the slenderness limit.
+    proto.radius = std::max(s.pillar_radius, z1 / (2 * s.slenderness));
+    // METHOD's Standing rule: widened downwards for what stands on it, as
+    // if it stood on the bed until its base is known.
+    proto.hold_z = std::max(z1, hold);
+    proto.give = give;
+    return proto;
+}
+
+// How far a column's bottom loop may reach past the model under it and
+// still rest on it, for a column whose top is on `top_layer`.
+double rest_reach(const layers::LayerStack& stack, int top_layer, const Settings& s) {
+    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
+    return stack.layers[top_layer].height * slope * 0.8;
+}
+
+// A bridge end right over the model's top rests on it: no column needed.
+bool rests_on_model(double x, double y, int top_layer, const layers::LayerStack& stack, const Obstacles& obs,
+                    const Settings& s) {
+    return loop_held(obs, top_layer, x, y, s.tip_radius, rest_reach(stack, top_layer, s));
+}
+
 // Walks the column down from its top layer, stepping aside where the model
 // comes too close. Returns the centre per layer (top first), with the base.
 bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
              std::vector<Step>& path, const Trunks* trunks, ModelBase* base = nullptr) {
-    const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
     double cx = proto.x1, cy = proto.y1, wander = 0;
     double height_above = 0;  // of the layer of path.back()
     int back_layer = -1;      // the layer of path.back()
@@ -410,7 +441,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         smooth_caps(path, proto, stack, top_layer, s);
         if (first) return false;
         double r_last = step_radius(proto, path.back(), s);
-        const double rest_reach = stack.layers[top_layer].height * slope * 0.8;
+        const double rest_reach = plan::rest_reach(stack, top_layer, s);
         auto rests = [&](double radius) {
             return layer.on_bed ? loop_held(obs, l, cx, cy, loop_shape(radius, s.support_width).centre_radius, rest_reach)
                                 : loop_rests(obs, l, cx, cy, radius, s.support_width, rest_reach);
@@ -533,18 +564,7 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                                                       bool thin_above, UnheldTips* unheld = nullptr) {
     const int top_layer = top == Top::Contact ? tip_layer(stack, overhang_layer, s) : stack.layers[overhang_layer].below;
     if (top_layer < 0) return std::nullopt;
-    Column proto;
-    proto.top = top;
-    proto.z1 = stack.layers[top_layer].z;
-    // Tapered top: at a contact (the tip), and under a bridge end too, which
-    // the narrow top holds as well and which then fits closer to the model.
-    proto.contact_z = proto.z1;
-    // Tall pillars wobble: keep height / diameter within the slenderness limit.
-    proto.radius = std::max(s.pillar_radius, proto.z1 / (2 * s.slenderness));
-    // METHOD's Standing rule: widened downwards for what stands on it, as
-    // if it stood on the bed until its base is known.
-    proto.hold_z = std::max(proto.z1, hold);
-    proto.give = give;
+    Column proto = plain_column(top, stack.layers[top_layer].z, hold, give, s);
     // `stiff`: the share of the taper the rule asks for; negative: the plain
     // column of old, with its neck.
     if (stiff >= 0) {
@@ -555,12 +575,7 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
         proto.taper = stiff * taper_for(proto.radius, proto.hold_z, target_stiffness(s), give, s.support_width, s.modulus);
     }
     std::vector<Step> path;
-    // A bridge end right over the model's top rests on it: no column needed.
-    if (top == Top::Bridge) {
-        const double slope = std::tan(s.overhang_angle_deg * std::numbers::pi / 180);
-        if (loop_held(obs, top_layer, x, y, s.tip_radius, stack.layers[top_layer].height * slope * 0.8))
-            return std::vector<Column>{};
-    }
+    if (top == Top::Bridge && rests_on_model(x, y, top_layer, stack, obs, s)) return std::vector<Column>{};
     // The point itself first, then rings around it, in a fixed order.
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
     static constexpr std::array<double, 9> kRings{0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0};
@@ -743,6 +758,68 @@ std::optional<std::vector<Column>> drop_pillar(double x, double y, int overhang_
                                         -1.0, thin_above, &unheld))
         return chain;
     return unheld.first;
+}
+
+std::size_t BarEndAnswers::Hash::operator()(const Key& k) const {
+    std::size_t h = static_cast<std::size_t>(k.layer);
+    for (std::uint64_t v : {k.x, k.y, k.radius, k.above_radius, k.above_height, k.reach})
+        h = (h ^ v) * 0x100000001b3ULL + (h >> 29);
+    return h;
+}
+
+std::optional<bool> BarEndAnswers::find(const Key& key) const {
+    const std::lock_guard lock(mutex_);
+    const auto it = map_.find(key);
+    return it == map_.end() ? std::nullopt : std::optional<bool>(it->second);
+}
+
+std::size_t BarEndAnswers::size() const {
+    const std::lock_guard lock(mutex_);
+    return map_.size();
+}
+
+void BarEndAnswers::insert(const Key& key, bool stands) {
+    const std::lock_guard lock(mutex_);
+    map_.emplace(key, stands);
+}
+
+bool bar_end_stands(double x, double y, int overhang_layer, const layers::LayerStack& stack, const Obstacles& obs,
+                    const Settings& s, BarEndAnswers& known) {
+    auto full = [&] {
+        return drop_pillar(x, y, overhang_layer, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, false).has_value();
+    };
+    // drop_pillar's own steps, as it takes them for this question: the plain
+    // column (no taper), from the point itself (a bar end does not move),
+    // without trunks; the descent's straight part repeated here.
+    const int top_layer = stack.layers[overhang_layer].below;
+    if (top_layer < 0) return false;
+    if (rests_on_model(x, y, top_layer, stack, obs, s)) return true;
+    const Column proto = plain_column(Top::Bridge, stack.layers[top_layer].z, 0, 0, s);
+    double above_radius = 0, above_height = 0;
+    for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
+        const layers::Layer& layer = stack.layers[l];
+        const double r = column_radius_at(proto, layer.z, s);
+        if (obs.disc_clear(l, x, y, r + clearance_at(proto, layer.z, s) + s.resolution / 2)) {
+            above_radius = r;
+            above_height = layer.height;
+            continue;
+        }
+        if (l == top_layer) return false;  // the descent's first layer does not step aside
+        // Blocked within the tapered top: the radius below differs per top.
+        if (r != proto.radius) return full();
+        // Everything the rest of the descent reads: the place, the layer, the
+        // radius from here down, the loop above (its radius and height) and
+        // how far a bottom loop may reach (from the top layer's height).
+        const BarEndAnswers::Key key{std::bit_cast<std::uint64_t>(x),           std::bit_cast<std::uint64_t>(y),
+                            std::bit_cast<std::uint64_t>(proto.radius), std::bit_cast<std::uint64_t>(above_radius),
+                            std::bit_cast<std::uint64_t>(above_height),
+                            std::bit_cast<std::uint64_t>(rest_reach(stack, top_layer, s)), l};
+        if (const std::optional<bool> ok = known.find(key)) return *ok;
+        const bool ok = full();
+        known.insert(key, ok);
+        return ok;
+    }
+    return true;  // straight down to the bed
 }
 
 bool widen_column(std::vector<Column>& chain, const layers::LayerStack& stack, const Obstacles& obs,

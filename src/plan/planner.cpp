@@ -394,12 +394,13 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     std::stable_sort(by_z.by_z.begin(), by_z.by_z.end());
 
     // Bridge ends need a pillar that drop_pillar can really build.
+    if (!answers) answers = std::make_shared<ModelAnswers>();
+    if (!answers->bar_ends) answers->bar_ends = std::make_shared<BarEndAnswers>();
     auto view_of = [&](const Obstacles& o) {
         ModelView v = model_view(o);
-        v.end_stands = [&stack, &s, &by_z, op = &o](double x, double y, double z) {
+        v.end_stands = [&stack, &s, &by_z, op = &o, known = answers->bar_ends](double x, double y, double z) {
             int above = by_z.above(z);
-            return above >= 0 &&
-                   drop_pillar(x, y, above, Top::Bridge, stack, *op, s, nullptr, TipPlaces::Any, false).has_value();
+            return above >= 0 && bar_end_stands(x, y, above, stack, *op, s, *known);
         };
         return v;
     };

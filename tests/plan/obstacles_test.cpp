@@ -560,3 +560,50 @@ TEST(PlanPillars, AThinColumnWidensBelowWhereItIsSqueezed) {
     std::vector<plan::Column> again = chain;
     EXPECT_FALSE(plan::widen_column(again, st, obs, s));
 }
+
+// The bridge search's question about a bar end, answered from the places
+// where straight descents were first blocked, is drop_pillar's own answer
+// everywhere. The scene: a block whose top holds columns (z 6), above it a
+// model bar too narrow to land on (z 9 to 10), a wall leaning out 0.1 mm a
+// layer and a slot; over a grid of places, bar ends under every layer from
+// z 6.4 to 20, highest first and then lowest first, so that a place is
+// asked from above and below the bar (blocked first at different layers,
+// with different answers) and within a tip's length of what blocks it.
+TEST(PlanPillars, BarEndsStandExactlyWhereTheirPillarsDo) {
+    Settings s;
+    constexpr int kLayers = 100;  // z 0.2 .. 20
+    const layers::LayerStack st = test::stack_of(
+        kLayers,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i < 30)
+                for (double y = 40.225; y < 52; y += 0.45) test::bead(l, 40, y, 52, y);
+            if (i >= 44 && i < 50) test::bead(l, 38, 46, 54, 46);
+            if (i < 60) test::bead(l, 54 + 0.1 * i, 36, 54 + 0.1 * i, 58);
+            if (i < 80) {
+                test::bead(l, 42, 54, 50, 54);
+                test::bead(l, 42, 55.6, 50, 55.6);
+            }
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    plan::BarEndAnswers known;
+    int stands = 0, falls = 0;
+    for (bool down : {true, false})
+        for (int k = 0; k < 64; ++k) {
+            const int layer = down ? 95 - k : 32 + k;
+            for (double x = 38.3; x < 60; x += 1.1)
+                for (double y = 38.1; y < 58; y += 1.1) {
+                    const bool want = plan::drop_pillar(x, y, layer, plan::Top::Bridge, st, obs, s, nullptr,
+                                                        plan::TipPlaces::Any, false)
+                                          .has_value();
+                    ASSERT_EQ(plan::bar_end_stands(x, y, layer, st, obs, s, known), want)
+                        << "at (" << x << ", " << y << ") under layer " << layer;
+                    (want ? stands : falls)++;
+                }
+        }
+    // Both answers were given, and many places kept.
+    EXPECT_GT(stands, 1000);
+    EXPECT_GT(falls, 1000);
+    EXPECT_GT(known.size(), 100u);
+}
