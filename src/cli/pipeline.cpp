@@ -250,12 +250,21 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
         // METHOD's Standing rule: columns too weak for it (no room to widen)
         // tied to two neighbours in triangles.
-        if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden))
+        std::vector<std::size_t> short_of_rule;
+        if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden, &short_of_rule))
             log.debug("{} bars brace weak columns", n);
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
         // A bar whose line rule (b) does not hold as built (it passes along
-        // the edge of a column it does not rest on): plan again without it.
-        const std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        // the edge of a column it does not rest on), or whose end stands on
+        // a column that neither braces nor widening make stiff enough: plan
+        // again without it.
+        std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (!short_of_rule.empty()) {
+            log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
+            for (std::size_t i : short_of_rule)
+                if (std::find(bad.begin(), bad.end(), i) == bad.end()) bad.push_back(i);
+            std::sort(bad.begin(), bad.end());
+        }
         if (log.should_log(spdlog::level::trace))
             for (std::size_t i : bad) {
                 const plan::Bridge& b = scaffold.bridges[i];
@@ -275,8 +284,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             break;
         }
         for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
-        log.debug("{} bars not held as built: planning again without them ({:.0f} ms so far)", bad.size(),
-                  1000 * std::chrono::duration<double>(Clock::now() - t0).count());
+        log.debug("{} bars not held as built or short of the rule: planning again without them ({:.0f} ms so far)",
+                  bad.size(), 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     }
     if (replay.offers_replayed > 0)
         log.debug("plans made again resumed their bridge search: {} offers not made again", replay.offers_replayed);

@@ -263,13 +263,19 @@ double own_top_stiffness(int wi, const std::vector<PillarChain>& chains, const s
 // where that stands stiffer at W's hold. Only a column whose own top falls
 // short as the validator walks it: one that met a stiffer column lower down
 // stands as that one does (elephant plates: 8 % more filament for nothing).
-void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, const std::vector<ColumnMeeting>& meets,
-                  const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-                  const std::vector<std::pair<double, int>>& tops) {
+// Returns W's stiffness at its own top as own_top_stiffness walks it,
+// widened (by the ratio of the summed compliances) or not; infinity where
+// W is not looked at (no bar end, or standing by that walk).
+double widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, const std::vector<ColumnMeeting>& meets,
+                    const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
+                    const std::vector<std::pair<double, int>>& tops) {
+    constexpr double kNotLooked = std::numeric_limits<double>::infinity();
     const PillarChain& W = chains[wi];
     const Column top = sc.columns[W.pieces.back()], foot = sc.columns[W.pieces.front()];
-    if (top.top != Top::Bridge || W.pieces.back() - W.pieces.front() + 1 != static_cast<int>(W.pieces.size())) return;
-    if (own_top_stiffness(wi, chains, meets, sc, stack, s, tops) >= kGiveMargin * s.min_stiffness) return;
+    if (top.top != Top::Bridge || W.pieces.back() - W.pieces.front() + 1 != static_cast<int>(W.pieces.size()))
+        return kNotLooked;
+    const double own = own_top_stiffness(wi, chains, meets, sc, stack, s, tops);
+    if (own >= kGiveMargin * s.min_stiffness) return kNotLooked;
     // Not a trunk: a branch standing on W's loop where it is now would be
     // left in the air by a way down that steps elsewhere.
     for (int k = 0; k < static_cast<int>(sc.columns.size()); ++k) {
@@ -278,16 +284,16 @@ void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, 
             continue;
         if (const auto r = ring_at(W, sc, s, c.z0, -1);
             r && std::hypot(c.x0 - r->x, c.y0 - r->y) <= r->r + column_radius_at(c, c.z0, s) + s.support_width)
-            return;
+            return own;
     }
     const auto above = std::upper_bound(tops.begin(), tops.end(), std::make_pair(top.z1 + kEps, INT_MAX));
-    if (above == tops.end()) return;
+    if (above == tops.end()) return own;
     const bool thin_above = top.contact_z > 0 && top.hold_z > top.z1 + kEps;
     auto chain = drop_pillar(top.x1, top.y1, above->second, Top::Bridge, stack, obs, s, nullptr, TipPlaces::Any, true,
                              top.hold_z, foot.give, thin_above, true);
-    if (!chain || chain->empty()) return;
+    if (!chain || chain->empty()) return own;
     const Column& new_top = chain->back();
-    if (std::abs(new_top.z1 - top.z1) > kEps || std::hypot(new_top.x1 - top.x1, new_top.y1 - top.y1) > kEps) return;
+    if (std::abs(new_top.z1 - top.z1) > kEps || std::hypot(new_top.x1 - top.x1, new_top.y1 - top.y1) > kEps) return own;
     // Judged as the braces judge W: its pieces' loops, summed layer by layer.
     const std::size_t before = sc.columns.size();
     PillarChain wider{{}, chain->front().z0, new_top.z1, W.hold};
@@ -296,18 +302,19 @@ void widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains, 
         wider.pieces.push_back(static_cast<int>(sc.columns.size()));
         sc.columns.push_back(c);
     }
-    const bool stiffer = chain_compliance(wider, W.hold, sc, stack, s) < chain_compliance(W, W.hold, sc, stack, s) - kEps;
+    const double was = chain_compliance(W, W.hold, sc, stack, s), now = chain_compliance(wider, W.hold, sc, stack, s);
     sc.columns.resize(before);
-    if (!stiffer) return;
+    if (!(now < was - kEps)) return own;
     const auto first = sc.columns.begin() + W.pieces.front();
     sc.columns.insert(sc.columns.erase(first, first + static_cast<std::ptrdiff_t>(W.pieces.size())), chain->begin(),
                       chain->end());
+    return own * was / now;
 }
 
 }  // namespace
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-               const std::vector<Bridge>& forbidden) {
+               const std::vector<Bridge>& forbidden, std::vector<std::size_t>* short_of_rule) {
     const double target = target_stiffness(s);
     if (!(target > 0)) return 0;
     std::vector<PillarChain> chains = pillar_chains(sc);
@@ -627,8 +634,20 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     // that fits, at any share of the taper (the plan's own drop searches it
     // only at a quarter or less, leaving the rest to the braces). Last
     // first: a column's pieces are replaced where they stand in the list.
-    for (auto it = untied.rbegin(); it != untied.rend(); ++it)
-        if (!braced[*it]) widen_untied(sc, *it, chains, meets, stack, obs, s, tops);
+    for (auto it = untied.rbegin(); it != untied.rend(); ++it) {
+        if (braced[*it]) continue;
+        const Column top = sc.columns[chains[*it].pieces.back()];
+        if (widen_untied(sc, *it, chains, meets, stack, obs, s, tops) >= s.min_stiffness || !short_of_rule) continue;
+        // The bars whose end it is (braces come after the plan's own bars).
+        for (std::size_t i = 0; i < sc.bridges.size(); ++i) {
+            const Bridge& b = sc.bridges[i];
+            auto at_top = [&](double x, double y) { return std::hypot(x - top.x1, y - top.y1) < kEps; };
+            if (!b.brace && std::abs(b.z - top.z1) < kEps && (at_top(b.x0, b.y0) || at_top(b.x1, b.y1)) &&
+                std::find(short_of_rule->begin(), short_of_rule->end(), i) == short_of_rule->end())
+                short_of_rule->push_back(i);
+        }
+    }
+    if (short_of_rule) std::sort(short_of_rule->begin(), short_of_rule->end());
     return added;
 }
 

@@ -74,8 +74,12 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
 // the model by the XY gap and not near a forbidden bar. A pillar under a bar
 // end that no triangle ties, and whose own top falls short as the validator
 // walks it, is dropped again as wide as fits (drop_pillar's `widest`) where
-// that stands stiffer. Returns the bars added.
+// that stands stiffer. Returns the bars added. `short_of_rule` (optional)
+// gets the bars (indices, none a brace) whose end stands on such a pillar
+// and which, widened or not, still falls short of --min-stiffness by that
+// walk: the plan is better made without them.
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
-               const Settings& settings, const std::vector<Bridge>& forbidden);
+               const Settings& settings, const std::vector<Bridge>& forbidden,
+               std::vector<std::size_t>* short_of_rule = nullptr);
 
 }  // namespace scaffold::plan
