@@ -240,17 +240,26 @@ TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATw
 // walls at 34 and 46 mm): a helper 10 or 12 mm away stands outside it and
 // no bar crosses the wall, so no triangle ties the column. It is dropped
 // again as wide as fits at any share of the rule's taper.
-struct TubeScene : ::testing::Test {
-    Settings s;
-    const layers::LayerStack st = test::stack_of(
+namespace {
+
+// A square tube of model, walls at lo and hi on both axes, 45 mm tall.
+layers::LayerStack square_tube(double lo, double hi) {
+    return test::stack_of(
         225,
-        [](int, layers::Layer& l) {
-            test::bead(l, 34, 34, 46, 34, gcode::Role::Perimeter);
-            test::bead(l, 46, 34, 46, 46, gcode::Role::Perimeter);
-            test::bead(l, 46, 46, 34, 46, gcode::Role::Perimeter);
-            test::bead(l, 34, 46, 34, 34, gcode::Role::Perimeter);
+        [=](int, layers::Layer& l) {
+            test::bead(l, lo, lo, hi, lo, gcode::Role::Perimeter);
+            test::bead(l, hi, lo, hi, hi, gcode::Role::Perimeter);
+            test::bead(l, hi, hi, lo, hi, gcode::Role::Perimeter);
+            test::bead(l, lo, hi, lo, lo, gcode::Role::Perimeter);
         },
         {-5, -5, 80, 80});
+}
+
+}  // namespace
+
+struct TubeScene : ::testing::Test {
+    Settings s;
+    const layers::LayerStack st = square_tube(34, 46);
     const plan::Obstacles obs{st, s};
     plan::Scaffold sc;
 };
@@ -299,15 +308,7 @@ TEST_F(TubeScene, OnlyABarOnAColumnStillShortOfTheRuleIsReported) {
     plan::add_braces(sc, st, obs, s, {}, &short_of_rule);
     EXPECT_TRUE(short_of_rule.empty());
 
-    const layers::LayerStack narrow = test::stack_of(
-        225,
-        [](int, layers::Layer& l) {
-            test::bead(l, 37.8, 37.8, 42.2, 37.8, gcode::Role::Perimeter);
-            test::bead(l, 42.2, 37.8, 42.2, 42.2, gcode::Role::Perimeter);
-            test::bead(l, 42.2, 42.2, 37.8, 42.2, gcode::Role::Perimeter);
-            test::bead(l, 37.8, 42.2, 37.8, 37.8, gcode::Role::Perimeter);
-        },
-        {-5, -5, 80, 80});
+    const layers::LayerStack narrow = square_tube(37.8, 42.2);
     const plan::Obstacles tight(narrow, s);
     plan::Scaffold in_tight;
     in_tight.columns.push_back(plain(40, 40, 40));
