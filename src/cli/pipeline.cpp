@@ -3,6 +3,7 @@
 #include "gcode/format.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -226,10 +227,11 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
     bool bars_held = false;  // the last plan's bars checked and all held
     // Should the rounds run out, each plan still keeping a few such bars: the
-    // plan with the fewest that carry points (brace bars are left out below);
-    // the last plan is no better than the others.
+    // plan with the fewest not held that carry points (brace bars are left
+    // out below), then with the fewest on columns short of the rule (those
+    // are held: weaker, not broken); the last plan is no better than the others.
     struct Kept {
-        std::size_t bad = SIZE_MAX;
+        std::pair<std::size_t, std::size_t> bad{SIZE_MAX, SIZE_MAX};
         overhang::SupportPoints points;
         plan::Scaffold scaffold;
         toolpath::SupportPaths paths;
@@ -258,28 +260,34 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // the edge of a column it does not rest on), or whose end stands on
         // a column that neither braces nor widening make stiff enough: plan
         // again without it.
-        std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
-        if (!short_of_rule.empty()) {
-            log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
-            for (std::size_t i : short_of_rule)
-                if (std::find(bad.begin(), bad.end(), i) == bad.end()) bad.push_back(i);
-            std::sort(bad.begin(), bad.end());
-        }
+        const std::vector<std::size_t> unheld = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (!short_of_rule.empty()) log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
         if (log.should_log(spdlog::level::trace))
-            for (std::size_t i : bad) {
-                const plan::Bridge& b = scaffold.bridges[i];
-                log.trace("round {}: bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{} not held as built", round, b.x0,
-                          b.y0, b.x1, b.y1, b.z, b.brace ? ", brace" : "");
-            }
-        if ((bars_held = bad.empty())) break;
-        const auto carrying = static_cast<std::size_t>(
-            std::count_if(bad.begin(), bad.end(), [&](std::size_t i) { return !scaffold.bridges[i].brace; }));
+            for (const std::vector<std::size_t>* list :
+                 std::array<const std::vector<std::size_t>*, 2>{&unheld, &short_of_rule})
+                for (std::size_t i : *list) {
+                    const plan::Bridge& b = scaffold.bridges[i];
+                    log.trace("round {}: bar ({:.2f}, {:.2f}) -> ({:.2f}, {:.2f}) at z {:.2f}{} {}", round, b.x0, b.y0, b.x1,
+                              b.y1, b.z, b.brace ? ", brace" : "",
+                              list == &unheld ? "not held as built" : "on a column short of the rule");
+                }
+        std::vector<std::size_t> bad = unheld;
+        for (std::size_t i : short_of_rule)
+            if (std::find(bad.begin(), bad.end(), i) == bad.end()) bad.push_back(i);
+        std::sort(bad.begin(), bad.end());
+        bars_held = unheld.empty();
+        if (bad.empty()) break;
+        const std::pair<std::size_t, std::size_t> carrying{
+            static_cast<std::size_t>(
+                std::count_if(unheld.begin(), unheld.end(), [&](std::size_t i) { return !scaffold.bridges[i].brace; })),
+            short_of_rule.size()};
         if (carrying < kept.bad) kept = {carrying, points, scaffold, paths};
         if (round == kBarRounds) {
             if (kept.bad < carrying) {
                 points = std::move(kept.points);
                 scaffold = std::move(kept.scaffold);
                 paths = std::move(kept.paths);
+                bars_held = false;  // its brace bars not checked here
             }
             break;
         }
