@@ -112,6 +112,14 @@ double step_radius(const Column& c, const Step& st, const Settings& s) {
     return column_radius_at(capped, st.z, s);
 }
 
+// The disc a column's loop of radius r on the layer at z must find clear of
+// the model: the gap (only the contact itself, the top two layers, may come
+// closer) and half a cell more (the model's raster falls up to half a cell
+// short of a bead's edge; the validator measures from the bead).
+double room_needed(const Column& c, double z, double r, const Settings& s) {
+    return r + clearance_at(c, z, s) + s.resolution / 2;
+}
+
 // Largest radius in [lo, hi] (to 0.01 mm) whose disc, grown by `extra`,
 // is clear of the model on `layer`; lo is known clear.
 double widest_clear(const Obstacles& obs, int layer, double x, double y, double lo, double hi, double extra) {
@@ -281,7 +289,7 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
         return under.path_held(written, s.marked_bridge_limit);
     };
     if (held(back.x, back.y)) return Settle::Held;
-    const double need = r + clearance_at(proto, back.z, s) + s.resolution / 2;
+    const double need = room_needed(proto, back.z, r, s);
     const double rc_up = loop_shape(step_radius(proto, up, s), s.support_width).centre_radius;
     const double limit = loop_shift_limit(std::min(stack.layers[back_layer].height, up.z - back.z), s);
     for (double d : kSettleShifts)
@@ -339,10 +347,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
         const layers::Layer& layer = stack.layers[l];
         double r = column_radius_at(proto, layer.z, s);
-        // Only the contact itself (the top two layers) may come close to the model.
-        // Half a cell more than the gap: the model's raster falls up to half
-        // a cell short of a bead's edge, the validator measures from the bead.
-        double need = r + clearance_at(proto, layer.z, s) + s.resolution / 2;
+        double need = room_needed(proto, layer.z, r, s);
         bool first = path.empty();
         if (trunks && !first && !trunks->at(l).empty()) {
             // Stand on a trunk whose loop here holds our loop above (its
@@ -799,7 +804,7 @@ bool bar_end_stands(double x, double y, int overhang_layer, const layers::LayerS
     for (int l = top_layer; l >= 0; l = stack.layers[l].below) {
         const layers::Layer& layer = stack.layers[l];
         const double r = column_radius_at(proto, layer.z, s);
-        if (obs.disc_clear(l, x, y, r + clearance_at(proto, layer.z, s) + s.resolution / 2)) {
+        if (obs.disc_clear(l, x, y, room_needed(proto, layer.z, r, s))) {  // as descend asks
             above_radius = r;
             above_height = layer.height;
             continue;
@@ -810,10 +815,11 @@ bool bar_end_stands(double x, double y, int overhang_layer, const layers::LayerS
         // Everything the rest of the descent reads: the place, the layer, the
         // radius from here down, the loop above (its radius and height) and
         // how far a bottom loop may reach (from the top layer's height).
-        const BarEndAnswers::Key key{std::bit_cast<std::uint64_t>(x),           std::bit_cast<std::uint64_t>(y),
-                            std::bit_cast<std::uint64_t>(proto.radius), std::bit_cast<std::uint64_t>(above_radius),
-                            std::bit_cast<std::uint64_t>(above_height),
-                            std::bit_cast<std::uint64_t>(rest_reach(stack, top_layer, s)), l};
+        auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+        const BarEndAnswers::Key key{bits(x),          bits(y),
+                                     bits(proto.radius), bits(above_radius),
+                                     bits(above_height), bits(rest_reach(stack, top_layer, s)),
+                                     l};
         if (const std::optional<bool> ok = known.find(key)) return *ok;
         const bool ok = full();
         known.insert(key, ok);

@@ -6,9 +6,9 @@
 // the model bulges out below, the pillar steps aside a little per layer (no
 // more than the overhang angle allows), so it becomes a chain of columns.
 #include <cmath>
-#include <optional>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
