@@ -16,6 +16,7 @@
 #include "gcode/error.hpp"
 #include "gcode/lexer.hpp"
 #include "layers/crossing.hpp"
+#include "layers/frame.hpp"
 #include "layers/layer_stack.hpp"
 #include "layers/objects.hpp"
 #include "layers/raster.hpp"
@@ -343,7 +344,7 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
                   const CheckOptions& o, const std::string& svg_dir) {
     CheckReport r;
     r.file = out.path;
-    const layers::LayerStack stack = layers::build_layers(out, settings);
+    layers::LayerStack stack = layers::build_layers(out, settings);
     r.layers = static_cast<int>(stack.layers.size());
 
     std::vector<bool> inserted;
@@ -466,7 +467,13 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     }
     r.print_time_s = estimate_print_time(out);
 
-    // Deposition, layer by layer.
+    // Deposition, layer by layer, in the model's frame as the detector finds
+    // overhangs in it (layers/frame.hpp): the two judge a bead on the edge of
+    // a cell to the bit alike. Places reported are moved back onto the bed.
+    const layers::Frame frame = layers::model_frame(stack, [&](const layers::Layer& l, const layers::Segment& sg) {
+        return layers::model_bead(l, sg) && !is_support_move(out.moves[sg.move]);
+    });
+    layers::move_stack(stack, frame, true);
     const layers::BitGrid proto = layers::make_grid(stack, o.resolution, 5.0);
     const double slope = std::tan(o.overhang_angle_deg * std::numbers::pi / 180);
     const double h_nom = settings.layer_height;
@@ -787,6 +794,12 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
     if (r.bad_extrusions) r.failures.push_back(std::to_string(r.bad_extrusions) + " extrusions with a width out of bounds");
     if (r.e_jumps) r.failures.push_back(std::to_string(r.e_jumps) + " E jumps");
     if (r.outside_bed) r.failures.push_back(std::to_string(r.outside_bed) + " extrusions outside the bed");
+    layers::move_stack(stack, frame, false);
+    for (std::vector<LayerIssue>* list : {&r.worst_unheld, &r.worst_collisions})
+        for (LayerIssue& is : *list) {
+            is.x += frame.dx();
+            is.y += frame.dy();
+        }
     // METHOD's second rule, on its own (check/standing.cpp).
     std::vector<SupportOwner> owner(out.moves.size(), SupportOwner::None);
     for (std::size_t i = 0; i < out.moves.size(); ++i)

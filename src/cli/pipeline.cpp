@@ -21,6 +21,7 @@
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
 #include "layers/copies.hpp"
+#include "layers/frame.hpp"
 #include "layers/layer_stack.hpp"
 #include "overhang/dump.hpp"
 #include "overhang/overhangs.hpp"
@@ -535,12 +536,31 @@ Outcome run(const Request& req, spdlog::logger& log) {
     }
     layers::LayerStack first_copy;
     if (copies) first_copy = layers::first_copy(stack, *copies);
+    // Found, planned and made in the frame of the model (a plate's first
+    // copy), then moved back: the same model gets the same support wherever
+    // it stands on the bed, and a copy on a plate the support it gets alone.
+    const layers::Frame frame = layers::model_frame(copies ? first_copy : stack);
+    layers::move_stack(stack, frame, true);
+    log.debug("planned in the model's frame: origin at ({:.3f}, {:.3f}) on the bed (the trace's places are in it)",
+              frame.dx(), frame.dy());
+    if (copies) {
+        layers::move_stack(first_copy, frame, true);
+        layers::Bounds& b = copies->prototype;
+        b = {b.min_x - frame.dx(), b.min_y - frame.dy(), b.max_x - frame.dx(), b.max_y - frame.dy()};
+    }
     time.lap("copies");
     progress.say("finding overhangs");
     overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
     overhang::SupportPoints points = overhang::place_points(overhangs, copies ? first_copy : stack, settings);
     time.lap("overhangs");
-    if (auto it = req.files.find("dump-points"); it != req.files.end()) overhang::write_points_json(it->second, points);
+    if (auto it = req.files.find("dump-points"); it != req.files.end()) {
+        overhang::SupportPoints on_bed = points;
+        for (overhang::SupportPoint& p : on_bed.points) {
+            p.x += frame.dx();
+            p.y += frame.dy();
+        }
+        overhang::write_points_json(it->second, on_bed);
+    }
     if (auto it = req.files.find("dump-layers"); it != req.files.end())
         overhang::write_layer_svgs(it->second, overhangs, points, copies ? first_copy : stack, settings);
     // Planning grows with the points' density, not the file's size: many
@@ -566,9 +586,13 @@ Outcome run(const Request& req, spdlog::logger& log) {
     first_copy = {};
     GroupPlanned planned = copied ? std::move(*copied) : plan_plate(req, points, overhangs, stack, settings, log, progress);
     copied.reset();
-    points = std::move(planned.points);
-    plan::Scaffold scaffold = std::move(planned.scaffold);
+    // Back onto the bed.
+    plan::GroupPlan placed = plan::moved({std::move(planned.points), std::move(planned.scaffold)}, frame.dx(), frame.dy());
+    points = std::move(placed.points);
+    plan::Scaffold scaffold = std::move(placed.scaffold);
     toolpath::SupportPaths paths = std::move(planned.paths);
+    toolpath::move_paths(paths, frame.dx(), frame.dy());
+    layers::move_stack(stack, frame, false);
     time.lap("plan");
     time.lap("toolpath");
     if (auto it = req.files.find("preview"); it != req.files.end())

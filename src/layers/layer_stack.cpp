@@ -85,12 +85,26 @@ BedMesh bed_mesh(const gcode::Program& program, const LayerStack& stack) {
         const int j = std::clamp(static_cast<int>((y - m.y0) / m.cell), 0, m.ny - 1);
         return static_cast<std::size_t>(j) * m.nx + i;
     };
+    // And the plane through them all (least squares, about the box's corner).
+    double n_all = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, syy = 0, sxz = 0, syz = 0;
     for (const Layer& L : stack.layers) {
         if (L.purge) continue;
         for (const Segment& s : L.segments) {
             const std::size_t c = cell_of(s.x1, s.y1);
-            sum[c] += program.moves[s.move].z1 - L.z;
+            const double z = program.moves[s.move].z1 - L.z, x = s.x1 - m.x0, y = s.y1 - m.y0;
+            sum[c] += z;
             ++count[c];
+            n_all += 1;
+            sx += x, sy += y, sz += z, sxx += x * x, sxy += x * y, syy += y * y, sxz += x * z, syz += y * z;
+        }
+    }
+    if (n_all > 2) {
+        const double cxx = sxx - sx * sx / n_all, cxy = sxy - sx * sy / n_all, cyy = syy - sy * sy / n_all;
+        const double cxz = sxz - sx * sz / n_all, cyz = syz - sy * sz / n_all, det = cxx * cyy - cxy * cxy;
+        // (Moves all along one line tell no tilt across it.)
+        if (det > 1e-9 * std::max(1.0, cxx * cyy)) {
+            m.tilt_x = (cxz * cyy - cyz * cxy) / det;
+            m.tilt_y = (cyz * cxx - cxz * cxy) / det;
         }
     }
     m.offset.assign(n, 0.0);
@@ -126,15 +140,16 @@ BedMesh bed_mesh(const gcode::Program& program, const LayerStack& stack) {
 double BedMesh::at(double x, double y) const {
     if (empty()) return 0;
     // Linear on past the outer cell centres by up to a cell (support beside
-    // the model's edge: a tilted bed goes on tilting), then flat.
-    const double fx = std::clamp((x - x0) / cell - 0.5, -1.0, static_cast<double>(nx)),
-                 fy = std::clamp((y - y0) / cell - 0.5, -1.0, static_cast<double>(ny));
+    // the model's edge), then on at the bed's overall tilt (a foot 3 mm out).
+    const double ux = (x - x0) / cell - 0.5, uy = (y - y0) / cell - 0.5;
+    const double fx = std::clamp(ux, -1.0, static_cast<double>(nx)), fy = std::clamp(uy, -1.0, static_cast<double>(ny));
     const int i = std::clamp(static_cast<int>(std::floor(fx)), 0, std::max(0, nx - 2)),
               j = std::clamp(static_cast<int>(std::floor(fy)), 0, std::max(0, ny - 2));
     const int i1 = std::min(i + 1, nx - 1), j1 = std::min(j + 1, ny - 1);
     const double tx = i1 > i ? fx - i : 0, ty = j1 > j ? fy - j : 0;
     auto v = [&](int a, int b) { return offset[static_cast<std::size_t>(b) * nx + a]; };
-    return (v(i, j) * (1 - tx) + v(i1, j) * tx) * (1 - ty) + (v(i, j1) * (1 - tx) + v(i1, j1) * tx) * ty;
+    return (v(i, j) * (1 - tx) + v(i1, j) * tx) * (1 - ty) + (v(i, j1) * (1 - tx) + v(i1, j1) * tx) * ty +
+           (tilt_x * (ux - fx) + tilt_y * (uy - fy)) * cell;
 }
 
 // An extrusion within kRestartNear mm of the lowest after the print rose

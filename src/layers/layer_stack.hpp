@@ -76,8 +76,12 @@ struct BedMesh {
     int nx = 0, ny = 0;
     std::vector<double> offset;  // nx * ny, every cell filled
     bool empty() const { return offset.empty(); }
+
+    // The plane fitted to every move's offset: mm per mm along x and y.
+    double tilt_x = 0, tilt_y = 0;
     // Bilinear between cell centres, linear on for a cell past the outer
-    // ones (a tilted bed goes on tilting beside the model), flat beyond.
+    // ones (a tilted bed goes on tilting beside the model), then on at the
+    // plane's tilt.
     double at(double x, double y) const;
 };
 

@@ -141,6 +141,9 @@ constexpr double kRestNarrowing = 0.1;
 // Shares of the Standing rule's taper at or below which drop_pillar looks
 // for the widest that fits.
 constexpr double kWidestBelow = 0.25;
+// Places a tip short of the Standing rule tries after the first, around its
+// point, for one that stands (in ring order: the rings within 0.75 mm).
+constexpr int kWeakTipTries = 24;
 
 // Caps limited to change per layer by what the shift limit leaves beside
 // the centre's step, from the capped layers outwards (only ever lowered:
@@ -249,6 +252,58 @@ constexpr int kSettleDirections = 16;
 // column stands (the bar search's answers) is the vertex test's. Asked with
 // the column's final radius: a column on the model is narrowed after its way
 // down is found.
+// METHOD's Standing rule counts an island as standing on the model (a base)
+// when at least 30 % of its cells lie over the model's footprint of the
+// layers within two nominal layer heights below. A loop held by rule (b)
+// may still fail that: one laid across a slot, over two walls 1.3 mm apart,
+// rests on the walls at four short crossings (a Kiri:Moto benchy: a
+// floating island). Asked of the loop's beads as written, on the
+// validator's lattice; the validator also fills the footprint's holes up
+// to 4 mm^2, which is not done here (so this asks at least as much), and
+// the share asked is a little over METHOD's for an island that meets
+// another piece of support and counts a few cells more.
+constexpr double kBaseShare = 0.35;
+bool loop_on_footprint(const std::vector<std::array<float, 2>>& written, int layer, const layers::LayerStack& stack,
+                       const Settings& s) {
+    if (written.size() < 2) return false;
+    const double cell = s.resolution, half = s.support_width / 2 + cell;
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const auto& v : written) {
+        x0 = std::min(x0, static_cast<double>(v[0]));
+        y0 = std::min(y0, static_cast<double>(v[1]));
+        x1 = std::max(x1, static_cast<double>(v[0]));
+        y1 = std::max(y1, static_cast<double>(v[1]));
+    }
+    // On the lattice of multiples of the cell, as layers::make_grid lays it.
+    const double gx = std::floor((x0 - half) / cell) * cell, gy = std::floor((y0 - half) / cell) * cell;
+    layers::BitGrid loop(gx, gy, x1 + half, y1 + half, cell);
+    for (std::size_t k = 0; k < written.size(); ++k) {
+        const auto& a = written[k];
+        const auto& b = written[(k + 1) % written.size()];
+        loop.draw_segment(a[0], a[1], b[0], b[1], s.support_width);
+    }
+    const std::size_t cells = loop.count();
+    if (cells == 0) return false;
+    layers::BitGrid foot = loop.empty_like();
+    const layers::Layer& top = stack.layers[static_cast<std::size_t>(layer)];
+    const double hw = std::max(s.layer_height, top.nominal_height), lowest = top.z - 2.0 * hw - 1e-3;
+    for (int k = layer - 1; k >= 0; --k) {
+        const layers::Layer& b = stack.layers[static_cast<std::size_t>(k)];
+        if (b.z < lowest - 1.0) break;
+        if (b.z >= top.z - layers::kZEps || b.z < lowest) continue;
+        for (const layers::Segment& sg : b.segments) {
+            if (sg.role == gcode::Role::Skirt) continue;
+            const double h = sg.width / 2;
+            if (std::max(sg.x0, sg.x1) + h < gx || std::min(sg.x0, sg.x1) - h > x1 + half ||
+                std::max(sg.y0, sg.y1) + h < gy || std::min(sg.y0, sg.y1) - h > y1 + half)
+                continue;
+            foot.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+        }
+    }
+    foot &= loop;
+    return static_cast<double>(foot.count()) >= kBaseShare * static_cast<double>(cells);
+}
+
 enum class Settle { Held, Moved, Unheld };
 Settle settle_on_model(const Column& proto, std::vector<Step>& path, const ModelBase& base,
                      const layers::LayerStack& stack, const Obstacles& obs, const Settings& s) {
@@ -286,7 +341,7 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
         written.clear();
         for (const auto& v : loop_vertices(x, y, r, s.support_width))
             written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
-        return under.path_held(written, s.marked_bridge_limit);
+        return under.path_held(written, s.marked_bridge_limit) && loop_on_footprint(written, back_layer, stack, s);
     };
     if (held(back.x, back.y)) return Settle::Held;
     const double need = room_needed(proto, back.z, r, s);
@@ -543,6 +598,13 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 }  // namespace
 
+bool loop_stands_on_model(double x, double y, double r, int layer, const layers::LayerStack& stack, const Settings& s) {
+    std::vector<std::array<float, 2>> written;
+    for (const auto& v : loop_vertices(x, y, r, s.support_width))
+        written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+    return loop_on_footprint(written, layer, stack, s);
+}
+
 int tip_layer(const layers::LayerStack& stack, int overhang_layer, const Settings& s) {
     int l = stack.layers[overhang_layer].below;
     for (int k = 0; k < s.top_gap_layers && l >= 0; ++k) l = stack.layers[l].below;
@@ -585,7 +647,14 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
     // The tip still holds the point from up to 3 mm away (point radius 3.5).
     static constexpr std::array<double, 9> kRings{0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0};
     bool under_sheet = true;
+    // METHOD's Standing rule: a tip whose column, as found, is short of it
+    // (capped where it passes the model) looks on around its point for a
+    // place where it stands, a few places at most; else the stiffest found.
+    const bool seek_standing = fit_base && top == Top::Contact && stiff >= 0 && target_stiffness(s) > 0;
     auto search = [&](const Column& shape) -> std::optional<std::vector<Column>> {
+        std::optional<std::vector<Column>> weak;
+        double weak_k = -1;
+        int weak_tries = 0;
         for (double d : kRings) {
             if (top == Top::Bridge && d > 0) break;  // a bridge end stays where the bridge is
             int n = d == 0 ? 1 : (d < 1.75 ? 8 : 16);
@@ -641,17 +710,27 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                     if (--unheld->tries_left < 0) return unheld->first;
                     continue;
                 }
+                double short_k = -1;  // the column's stiffness, where it is short of the rule
                 if (fit_base && top == Top::Contact) {
                     Column sized = c;
                     if (narrow) sized.taper = narrowed.taper;
                     if (widen_in_place(sized, path, top_layer, stack, obs, s, give)) chain = columns_of(sized, path);
+                    if (seek_standing && sized.base != Base::Column) {
+                        const double stands_k = 1 / (path_compliance(sized, path, s) + give);
+                        if (stands_k < kGiveMargin * s.min_stiffness) short_k = stands_k;
+                    }
                 }
                 if (fit_base && chain.front().base == Base::Bed)
                     fit_foot_and_raft(chain.front(), chain.back().z1, stack, obs, s);
-                return chain;
+                if (short_k < 0) return chain;
+                if (short_k > weak_k) {
+                    weak_k = short_k;
+                    weak = std::move(chain);
+                }
+                if (++weak_tries > kWeakTipTries) return weak;
             }
         }
-        return std::nullopt;
+        return weak;
     };
     // Under the sheet first; then anywhere within reach of the point.
     for (bool pass : {true, false}) {

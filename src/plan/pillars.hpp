@@ -163,6 +163,10 @@ LoopShape loop_shape(double r, double width);
 // The loop's vertices as the toolpaths print it, from angle 0 round to it
 // again (sides + 1 points).
 std::vector<std::array<double, 2>> loop_vertices(double cx, double cy, double r, double width);
+// METHOD's Standing rule: whether a column's bottom loop (centre, radius r)
+// printed on `layer` stands on the model, at least 30 % of its cells (35 %
+// asked) over the model's footprint within two nominal layers below.
+bool loop_stands_on_model(double x, double y, double r, int layer, const layers::LayerStack& stack, const Settings& s);
 
 // How far a loop's centre line may stray from the loop printed under it
 // (on a layer of height h) and still rest on it: the self-supporting reach

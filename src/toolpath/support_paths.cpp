@@ -580,5 +580,14 @@ std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, 
     return out;
 }
 
+void move_paths(SupportPaths& paths, double dx, double dy) {
+    for (LayerPaths& lp : paths.layers)
+        for (Path& path : lp.paths)
+            for (Point& p : path.points) {
+                p.x += dx;
+                p.y += dy;
+            }
+}
+
 }  // namespace scaffold::toolpath
 

@@ -45,6 +45,9 @@ struct SupportPaths {
     std::vector<LayerPaths> layers;  // only layers with support, by index
 };
 
+// Every point moved by (dx, dy): paths made in the plan's frame, put on the bed.
+void move_paths(SupportPaths& paths, double dx, double dy);
+
 // The height the entry is printed at (its bond's, or its layer's).
 inline double printed_z(const LayerPaths& lp, const layers::LayerStack& stack) {
     return lp.bond() ? lp.bond_z : stack.layers[lp.layer].z;

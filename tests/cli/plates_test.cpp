@@ -20,23 +20,23 @@ using namespace scaffold;
 
 namespace {
 
-// Mushrooms (a cap of radius 6 on a stem of radius 2.5) at these x, y 105;
-// the last one's cap `last_cap` wide when given.
-std::string mushrooms(const std::vector<double>& xs, double last_cap = 6.0) {
+// Mushrooms (a cap of radius 6 on a stem of radius 2.5) at these x, y 105
+// (or `y`); the last one's cap `last_cap` wide when given.
+std::string mushrooms(const std::vector<double>& xs, double last_cap = 6.0, double y = 105) {
     scaffold::testing::SynthGcode g;
     for (int l = 1; l <= 20; ++l) {
         const double z = 0.2 * l;
         g.layer(z);
         g.type("External perimeter");
         for (std::size_t k = 0; k < xs.size(); ++k)
-            g.filled_disc(xs[k], 105, z > 3.0 + 1e-9 ? (k + 1 == xs.size() ? last_cap : 6.0) : 2.5);
+            g.filled_disc(xs[k], y, z > 3.0 + 1e-9 ? (k + 1 == xs.size() ? last_cap : 6.0) : 2.5);
     }
     return g.str();
 }
 
 // The support's extrusions (end points, 3 decimals as written) whose x lies
 // in [x0, x1), moved by -x0.
-std::vector<std::pair<long, long>> support_moves(const std::string& out, double x0, double x1) {
+std::vector<std::pair<long, long>> support_moves(const std::string& out, double x0, double x1, double y0 = 0) {
     std::vector<std::pair<long, long>> moves;
     bool support = false;
     std::size_t at = 0;
@@ -49,7 +49,7 @@ std::vector<std::pair<long, long>> support_moves(const std::string& out, double 
         if (!support || line.rfind("G1 X", 0) != 0 || line.find(" E") == std::string::npos) continue;
         const double x = std::strtod(line.c_str() + 4, nullptr);
         const double y = std::strtod(line.c_str() + line.find(" Y") + 2, nullptr);
-        if (x >= x0 && x < x1) moves.emplace_back(std::lround((x - x0) * 1000), std::lround(y * 1000));
+        if (x >= x0 && x < x1) moves.emplace_back(std::lround((x - x0) * 1000), std::lround((y - y0) * 1000));
     }
     return moves;
 }
@@ -145,4 +145,32 @@ TEST(Plates, ExactCopiesArePlannedOnceAndTheirPlanMoved) {
 TEST(Plates, APlateWithADifferentObjectOrWholePlateIsPlannedWhole) {
     EXPECT_FALSE(said(run(mushrooms({30, 60, 90}, 5.5), 1, true), "exact copies"));
     EXPECT_FALSE(said(run(mushrooms({30, 60, 90}), 1, false), "exact copies"));
+}
+
+// The plan is made in the model's own frame (layers/frame.hpp): moved on the
+// bed by a part of a cell (0.1 mm), a model gets the same support, moved.
+// Planned on the bed's own lattice, a mushroom moved 0.037 mm right and
+// 0.071 mm up had other support.
+TEST(Plates, AModelGetsTheSameSupportWhereverItStands) {
+    const Planned here = run(mushrooms({110}), 1);
+    const auto moves = support_moves(here.out, 90, 130);
+    ASSERT_GT(moves.size(), 20u);
+    for (const auto& [dx, dy] : {std::pair{0.037, 0.071}, std::pair{-0.05, 0.05}, std::pair{20.013, -30.006}}) {
+        const Planned there = run(mushrooms({110 + dx}, 6.0, 105 + dy), 1);
+        EXPECT_TRUE(same_moved(moves, support_moves(there.out, 90 + dx, 130 + dx, dy))) << dx << ", " << dy;
+        EXPECT_EQ(support_mm(here.out), support_mm(there.out)) << dx << ", " << dy;
+    }
+}
+
+// A copy on a plate is planned as the model alone on the bed is: the same
+// extrusions, moved (no skirt here, and the neighbours 30 mm off are in no
+// column's way).
+TEST(Plates, ACopyGetsTheSupportOfTheModelAlone) {
+    const Planned plate = run(mushrooms({30, 60, 90}), 1, true);
+    ASSERT_TRUE(said(plate, "3 exact copies: one planned"));
+    const Planned alone = run(mushrooms({60.043}), 1);
+    const auto one = support_moves(alone.out, 45.043, 75.043);
+    ASSERT_GT(one.size(), 20u);
+    EXPECT_TRUE(same_moved(one, support_moves(plate.out, 15, 45)));
+    EXPECT_TRUE(same_moved(one, support_moves(plate.out, 75, 105)));
 }

@@ -332,6 +332,12 @@ TEST(Dialects, SupportFollowsTheBedMeshOfALevelledFile) {
     // Beside the model (a pillar's loop 1 mm past its edge) the tilt goes on.
     for (double x : {99.0, 141.0})
         for (double y : {99.0, 111.0}) EXPECT_NEAR(p.stack.mesh.at(x, y), offset(x, y), 0.02) << x << "," << y;
+    // Further out (a foot 5 mm past the edge) it goes on at the plane fitted
+    // to all the moves: here the bed's own tilt, 0.02 and -0.01 mm per mm.
+    EXPECT_NEAR(p.stack.mesh.tilt_x, 0.02, 1e-4);
+    EXPECT_NEAR(p.stack.mesh.tilt_y, -0.01, 1e-4);
+    EXPECT_NEAR(p.stack.mesh.at(146, 105) - p.stack.mesh.at(144, 105), 2 * 0.02, 1e-9);
+    EXPECT_NEAR(p.stack.mesh.at(120, 95) - p.stack.mesh.at(120, 93), -2 * 0.01, 1e-9);
 }
 
 // Sequential printing (complete objects) without its setting: one object up

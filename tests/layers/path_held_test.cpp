@@ -16,6 +16,8 @@
 #include "check/printability.hpp"
 #include "gcode/reader.hpp"
 #include "layers/crossing.hpp"
+#include "layers/frame.hpp"
+#include "layers/layer_stack.hpp"
 #include "plan/pillars.hpp"
 #include "support/synth.hpp"
 
@@ -53,15 +55,20 @@ struct Slab {
         }
         return g.str();
     }
-    // The slab's top layer as the walk takes it.
-    std::vector<layers::BeadBeneath> beneath() const {
+    // The slab's top layer as the walk takes it, in the frame `f`.
+    std::vector<layers::BeadBeneath> beneath(const layers::Frame& f) const {
         std::vector<layers::BeadBeneath> beads;
         for (int k = 0; k < 14; ++k) {
             const auto a = at(-15, -0.225 - 0.45 * k), b = at(15, -0.225 - 0.45 * k);
-            beads.push_back({layers::as_written(a[0]), layers::as_written(a[1]), layers::as_written(b[0]),
-                             layers::as_written(b[1]), 0.45f, true});
+            beads.push_back({in_frame(a[0], f.dx_um), in_frame(a[1], f.dy_um), in_frame(b[0], f.dx_um),
+                             in_frame(b[1], f.dy_um), 0.45f, true});
         }
         return beads;
+    }
+    // A place as written (three decimals), moved into the frame whose
+    // origin is `origin_um` microns on: as the planner sees it.
+    static float in_frame(double v, long long origin_um) {
+        return layers::as_written(static_cast<double>(std::llround(v * 1000) - origin_um) / 1000);
     }
 };
 
@@ -76,15 +83,18 @@ TEST(PathHeld, ABottomLoopIsHeldExactlyWhereTheValidatorHoldsIt) {
             const Slab slab(deg);
             const std::string in = slab.gcode(nullptr);
             const auto i = gcode::parse(in, "in.gcode");
+            // The planner walks the loop in the model's frame, and the
+            // validator judges it there too (layers/frame.hpp).
+            const layers::Frame f = layers::model_frame(layers::build_layers(i, s));
             for (double out = -1.2; out <= 0.9 + 1e-9; out += 0.05) {
                 const auto c = slab.at(0.37, out);
                 std::vector<std::array<double, 2>> loop = plan::loop_vertices(c[0], c[1], r, s.support_width);
                 std::vector<std::array<float, 2>> written;
                 for (auto& v : loop) {
                     v = {std::round(v[0] * 1000) / 1000, std::round(v[1] * 1000) / 1000};
-                    written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+                    written.push_back({Slab::in_frame(v[0], f.dx_um), Slab::in_frame(v[1], f.dy_um)});
                 }
-                const bool ours = layers::path_held(written, slab.beneath(), reach, s.resolution, s.marked_bridge_limit);
+                const bool ours = layers::path_held(written, slab.beneath(f), reach, s.resolution, s.marked_bridge_limit);
                 const auto o = gcode::parse(slab.gcode(&loop), "out.gcode");
                 check::CheckOptions opt;
                 opt.tolerance_mm2 = 0;

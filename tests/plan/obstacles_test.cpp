@@ -225,16 +225,15 @@ TEST(PlanPillars, ContactIsTheTopTwoLayersWhateverTheFloatRounding) {
     EXPECT_FALSE(plan::in_contact(c, 33.6f, 0.2));
 }
 
-// A solid slab (infill lines along x, 0.45 mm apart) to z 4 with a slot 1 mm
-// across along its middle, open at both ends, and nothing above it up to a
-// point at z 8. The pillar under the point lands on the slab right under it:
-// its bottom loop crosses the slot, each side over it held at an end (the
-// validator's rule (b): a corner is held by the side before it, the rest is a
-// dangling end shorter than a side), as on a real anchor's narrow groove.
-// (Walked side by side as the validator walks it at a reach a cell larger
-// than its own, a side along the slot turns into a run between held ends,
-// which must cross: the loop settles up to 0.4 mm aside, still across it.)
-TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
+// A solid slab (infill lines along x, 0.45 mm apart) to z 4 with a slot
+// 1.35 mm across (bead edges at y 109.45 and 110.8) along its middle, open at
+// both ends, and nothing above it up to a point at z 8 over (110, 110). The
+// pillar under the point lands on the slab. Right under the point its bottom
+// loop would cross the slot, held by rule (b) (each side over it held at an
+// end), yet lie mostly over the slot: METHOD's Standing rule counts no base
+// there (under 30 % of its cells over the model), and a column on it would
+// float. It lands beside the slot instead, within a tip's reach of the point.
+TEST(Obstacles, APillarOverANarrowSlotLandsBesideIt) {
     Settings s;
     const layers::LayerStack st = test::stack_of(
         40,
@@ -253,8 +252,11 @@ TEST(Obstacles, APillarLandsAcrossANarrowSlot) {
     const plan::Column& base = chain->front();
     EXPECT_EQ(base.base, plan::Base::Model);
     EXPECT_NEAR(base.z0, 4.0, 1e-6);
-    EXPECT_LE(std::hypot(base.x0 - 110, base.y0 - 110), 0.4 + 1e-9);
-    EXPECT_LT(std::abs(base.y0 - 110), 0.5 - 0.1);  // its centre still over the slot
+    const double r = plan::column_radius_at(base, st.layers[20].z, s);
+    EXPECT_TRUE(plan::loop_stands_on_model(base.x0, base.y0, r, 20, st, s));
+    EXPECT_FALSE(plan::loop_stands_on_model(110, 110, r, 20, st, s));
+    EXPECT_LE(std::hypot(base.x0 - 110, base.y0 - 110), 1.0 + 1e-9);
+    EXPECT_GT(std::abs(base.y0 - 110.125), 0.675);  // its centre off the slot
 }
 
 // METHOD's Standing rule: a column passing a narrow place keeps its taper
@@ -606,4 +608,74 @@ TEST(PlanPillars, BarEndsStandExactlyWhereTheirPillarsDo) {
     EXPECT_GT(stands, 1000);
     EXPECT_GT(falls, 1000);
     EXPECT_GT(known.size(), 100u);
+}
+
+// METHOD's Standing rule: a column's bottom loop is a base on the model when
+// 30 % of its cells lie over the model's footprint below (35 % asked). A
+// loop of radius 1 (its bead 0.45 wide: the ring between 0.55 and 1 mm from
+// its centre, 2.19 mm^2) over walls 0.45 wide, their shares of the ring
+// integrated by hand:
+// - walls 1.3 mm apart, the loop centred between them: 55 %;
+// - the same walls, the loop 0.42 mm off the middle (walls 1.07 mm to one
+//   side and 0.23 to the other, a Kiri:Moto benchy's floating column): 25 %;
+// - one wall through the loop's centre: 19 %;
+// - a solid top: all of it.
+TEST(PlanPillars, ALoopStandsOnTheModelWhereThirtyPercentOfItIsOverIt) {
+    const Settings s;
+    auto walls = [](std::vector<double> xs) {
+        return test::stack_of(
+            14,
+            [xs](int i, layers::Layer& l) {
+                if (i < 10)
+                    for (double x : xs) test::bead(l, x, 40, x, 60, gcode::Role::Perimeter);
+            },
+            {30, 30, 70, 70});
+    };
+    const layers::LayerStack slot = walls({49.35, 50.65});
+    EXPECT_TRUE(plan::loop_stands_on_model(50, 50, 1.0, 10, slot, s));
+    EXPECT_FALSE(plan::loop_stands_on_model(50.42, 50, 1.0, 10, slot, s));
+    EXPECT_FALSE(plan::loop_stands_on_model(50, 50, 1.0, 10, walls({50}), s));
+    std::vector<double> solid;
+    for (double x = 45.225; x < 55; x += 0.45) solid.push_back(x);
+    EXPECT_TRUE(plan::loop_stands_on_model(50, 50, 1.0, 10, walls(solid), s));
+    // The layers within two nominal heights below only: the top (z 2.0) is
+    // two layers under layer 11 (z 2.4), three under layer 12 (z 2.6).
+    EXPECT_TRUE(plan::loop_stands_on_model(50, 50, 1.0, 11, walls(solid), s));
+    EXPECT_FALSE(plan::loop_stands_on_model(50, 50, 1.0, 12, walls(solid), s));
+}
+
+// A tip whose column, where first found, is short of the Standing rule
+// looks on around its point. A point at z 30 over (50, 50); up to z 15 two
+// walls run from y 30 to 51, 2 mm either side of it (their beads' edges
+// 1.775 mm off). Straight down, the column fits at 1 mm but its taper is
+// capped at 1.3 mm between the walls, where its lever is longest: 0.707 N/mm
+// (the place first found, kept when the tip looks no further). A place
+// 2 mm or more further out, past the walls' end, stands.
+TEST(PlanPillars, ATipShortOfTheRuleWhereFirstFoundLooksOnAroundItsPoint) {
+    Settings s;  // --min-stiffness 2
+    constexpr int kOverhang = 149;  // z 30
+    const layers::LayerStack st = test::stack_of(
+        kOverhang + 1,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i < 75) {
+                test::bead(l, 48.0, 30, 48.0, 51, gcode::Role::Perimeter);
+                test::bead(l, 52.0, 30, 52.0, 51, gcode::Role::Perimeter);
+            }
+            if (i == kOverhang)
+                for (double y = 40.225; y < 60; y += 0.45) test::bead(l, 40, y, 60, y);
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(50, 50, kOverhang, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain);
+    ASSERT_FALSE(chain->empty());
+    plan::Scaffold sc;
+    sc.columns = *chain;
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 1u);
+    const double top = chain->back().z1;
+    const double k = 1 / plan::chain_compliance(chains[0], top, sc, st, s);
+    EXPECT_GE(k, s.min_stiffness) << "base at (" << chain->front().x0 << ", " << chain->front().y0 << ")";
+    EXPECT_LE(std::hypot(chain->back().x1 - 50, chain->back().y1 - 50), 3.0 + 1e-9);
 }
