@@ -22,6 +22,9 @@ constexpr double kEps = 1e-6;
 // Every angle of a tie's triangle at least this: three columns not on one
 // line (METHOD: two of their directions from the node 60 degrees apart).
 constexpr double kMinAngleDeg = 30.0;
+// mm: a partner nearer W's tie than this makes no side of a triangle (bars
+// need their ends' loops apart, 2 mm at the least).
+constexpr double kMinSide = 1.0;
 
 const Column* piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
     for (int i : chain.pieces) {
@@ -559,8 +562,11 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                             // Apex of the equilateral triangle on W and the partner, either side.
                             const PillarChain& P = chains[partners[i].second];
                             const auto p = at(P, b_top, zc_top);
-                            if (k >= 2 || d != 10.0 || !p) continue;
-                            const double mx = (a->x + p->x) / 2, my = (a->y + p->y) / 2, len = partners[i].first;
+                            // (A partner right under W's tie, a column stacked
+                            // on it, makes no side: no apex either.)
+                            const double len = partners[i].first;
+                            if (k >= 2 || d != 10.0 || !p || !(len > kMinSide)) continue;
+                            const double mx = (a->x + p->x) / 2, my = (a->y + p->y) / 2;
                             const double sign = k == 0 ? 1.0 : -1.0, h = len * std::sqrt(3.0) / 2;
                             auto hq = helper(mx - sign * (p->y - a->y) / len * h, my + sign * (p->x - a->x) / len * h);
                             if (!hq) continue;
