@@ -650,7 +650,7 @@ TEST(PlanPillars, ALoopStandsOnTheModelWhereThirtyPercentOfItIsOverIt) {
 // 1.775 mm off). Straight down, the column fits at 1 mm but its taper is
 // capped at 1.3 mm between the walls, where its lever is longest: 0.707 N/mm
 // (the place first found, kept when the tip looks no further). A place
-// 2 mm or more further out, past the walls' end, stands.
+// 0.75 mm on, towards the walls' end, stands (2.39).
 TEST(PlanPillars, ATipShortOfTheRuleWhereFirstFoundLooksOnAroundItsPoint) {
     Settings s;  // --min-stiffness 2
     constexpr int kOverhang = 149;  // z 30
