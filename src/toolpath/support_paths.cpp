@@ -202,19 +202,26 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
     paths = std::move(kept);
 }
 
-// Nearest-first order from the previous path's end; ties keep the input order.
+// Nearest-first order from the previous path's end; ties keep the input
+// order. Measured between the places as the file will hold them (three
+// decimals): loops on a grid (--method pillars) tie exactly, and their
+// ends, from sin and cos, differ in the last bit between C libraries, so
+// the raw distances broke the tie one way on Linux and the other on
+// Windows (anchor.cura413).
 void order_paths(std::vector<Path>& paths) {
     if (paths.size() < 3) return;
     std::vector<Path> out;
     out.reserve(paths.size());
     std::vector<bool> used(paths.size(), false);
     Point at = paths[0].points.front();
+    auto written = [](double v) { return std::round(v * 1000) / 1000; };
     for (std::size_t n = 0; n < paths.size(); ++n) {
         std::size_t best = paths.size();
         double best_d = 1e300;
         for (std::size_t i = 0; i < paths.size(); ++i) {
             if (used[i]) continue;
-            double d = std::hypot(paths[i].points.front().x - at.x, paths[i].points.front().y - at.y);
+            const double dx = written(paths[i].points.front().x) - written(at.x),
+                         dy = written(paths[i].points.front().y) - written(at.y), d = dx * dx + dy * dy;
             if (d < best_d) { best_d = d; best = i; }
         }
         used[best] = true;
