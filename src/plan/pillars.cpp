@@ -428,7 +428,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 double d = std::hypot(o.x - cx, o.y - cy);
                 if (d < near_d) { near_d = d; near = &o; }
             }
-            const double step = loop_shift_limit(layer.height, s);
+            const double step = loop_shift_limit(height_above, s);
             if (near && near_d > 1e-9 && wander + step <= kMaxWander) {
                 double k = std::min(step, near_d) / near_d;
                 double nx = cx + (near->x - cx) * k, ny = cy + (near->y - cy) * k;
@@ -444,8 +444,11 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             // Step aside by what the loop below still holds, preferring the
             // direction with the most room; fixed order breaks ties.
             // A loop may shift by the self-supporting reach plus half its
-            // bead and still rest on the one below (its centre line is held).
-            double step = loop_shift_limit(layer.height, s);
+            // bead and still rest on the one below (its centre line is held):
+            // the reach over the gap up to the loop above, not this layer's
+            // own height (a thicker first layer; KISSlicer's objects on Z
+            // grids of their own, layers 0.09 mm apart).
+            double step = loop_shift_limit(height_above, s);
             int best = -1;
             for (double margin : {0.4, 0.0}) {
                 for (int k = 0; k < 8 && best < 0; ++k) {
@@ -469,7 +472,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
             Column plain = proto;
             plain.taper = 0;
             const double r_plain = column_radius_at(plain, layer.z, s), extra = need - r;
-            const double step = loop_shift_limit(layer.height, s);
+            const double step = loop_shift_limit(height_above, s);
             double best = -1, bx = cx, by = cy;
             for (int k = -1; k < 8; ++k) {
                 if (k >= 0 && wander + step > kMaxWander) break;

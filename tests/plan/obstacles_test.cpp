@@ -679,3 +679,46 @@ TEST(PlanPillars, ATipShortOfTheRuleWhereFirstFoundLooksOnAroundItsPoint) {
     EXPECT_GE(k, s.min_stiffness) << "base at (" << chain->front().x0 << ", " << chain->front().y0 << ")";
     EXPECT_LE(std::hypot(chain->back().x1 - 50, chain->back().y1 - 50), 3.0 + 1e-9);
 }
+
+// A loop rests on the one below while it shifts by at most the reach over
+// the gap between them. On layers of uneven height (KISSlicer slices each
+// object on a Z grid of its own: here layers 0.09 and 0.11 mm apart in
+// turn) a branch leaning to its trunk stepped by the lower layer's own
+// height: 0.306 mm over a gap of 0.09, whose reach is 0.283, and
+// kisslicer206_multiobject's branch left 0.14 mm^2 of its loops unheld.
+TEST(PlanPillars, ABranchLeansByTheGapToTheLoopAboveOnUnevenLayers) {
+    const Settings s = without_standing();
+    std::vector<double> zs;
+    for (int k = 1; k <= 60; ++k) zs.insert(zs.end(), {0.2 * k, 0.2 * k + 0.09});
+    const layers::LayerStack st = test::stack_at(
+        zs, [](int, layers::Layer& l) { test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter); }, {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(trunk);
+    plan::Trunks trunks(st, plan::kBranchSteer);
+    trunks.add(*trunk, st, s);
+    const auto branch = plan::drop_pillar(51.5, 50, 80, plan::Top::Contact, st, obs, s, &trunks);
+    ASSERT_TRUE(branch);
+    ASSERT_EQ(branch->front().base, plan::Base::Column);
+    auto centre = [&](double z) {
+        for (const plan::Column& c : *branch)
+            if (z > c.z0 + 1e-6 && z <= c.z1 + 1e-6) {
+                double x, y;
+                plan::column_centre_at(c, z, x, y);
+                return std::pair{x, y};
+            }
+        ADD_FAILURE() << "no piece at z " << z;
+        return std::pair{0.0, 0.0};
+    };
+    int leaning = 0;
+    for (std::size_t l = 1; l + 1 < st.layers.size(); ++l) {
+        const double z = st.layers[l].z, z_up = st.layers[l + 1].z;
+        if (z <= branch->front().z0 + 1e-6 || z_up > branch->back().z1 + 1e-6) continue;
+        const auto [x, y] = centre(z);
+        const auto [xu, yu] = centre(z_up);
+        const double shift = std::hypot(xu - x, yu - y);
+        leaning += shift > 1e-9;
+        EXPECT_LE(shift, plan::loop_shift_limit(z_up - z, s) + 1e-9) << "z " << z << " to " << z_up;
+    }
+    EXPECT_GT(leaning, 2);  // it leans on several layers
+}
