@@ -545,22 +545,15 @@ Outcome run(const Request& req, spdlog::logger& log) {
               frame.dx(), frame.dy());
     if (copies) {
         layers::move_stack(first_copy, frame, true);
-        layers::Bounds& b = copies->prototype;
-        b = {b.min_x - frame.dx(), b.min_y - frame.dy(), b.max_x - frame.dx(), b.max_y - frame.dy()};
+        copies->prototype = layers::move_bounds(copies->prototype, frame, true);
     }
     time.lap("copies");
     progress.say("finding overhangs");
     overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
     overhang::SupportPoints points = overhang::place_points(overhangs, copies ? first_copy : stack, settings);
     time.lap("overhangs");
-    if (auto it = req.files.find("dump-points"); it != req.files.end()) {
-        overhang::SupportPoints on_bed = points;
-        for (overhang::SupportPoint& p : on_bed.points) {
-            p.x += frame.dx();
-            p.y += frame.dy();
-        }
-        overhang::write_points_json(it->second, on_bed);
-    }
+    if (auto it = req.files.find("dump-points"); it != req.files.end())
+        overhang::write_points_json(it->second, plan::moved({points, {}}, frame.dx(), frame.dy()).points);
     if (auto it = req.files.find("dump-layers"); it != req.files.end())
         overhang::write_layer_svgs(it->second, overhangs, points, copies ? first_copy : stack, settings);
     // Planning grows with the points' density, not the file's size: many

@@ -35,6 +35,11 @@ Frame model_frame(const LayerStack& stack, const FrameBead& is_model) {
     return frame_at(x, y);
 }
 
+Bounds move_bounds(const Bounds& b, const Frame& frame, bool into) {
+    const double fx = into ? -frame.dx() : frame.dx(), fy = into ? -frame.dy() : frame.dy();
+    return {b.min_x + fx, b.min_y + fy, b.max_x + fx, b.max_y + fy};
+}
+
 void move_stack(LayerStack& stack, const Frame& frame, bool into) {
     if (frame.identity()) return;
     const long long sx = into ? -frame.dx_um : frame.dx_um, sy = into ? -frame.dy_um : frame.dy_um;
@@ -49,9 +54,7 @@ void move_stack(LayerStack& stack, const Frame& frame, bool into) {
             s.y0 = my(s.y0);
             s.y1 = my(s.y1);
         }
-    const double fx = static_cast<double>(sx) / 1000.0, fy = static_cast<double>(sy) / 1000.0;
-    if (!stack.bounds.empty()) stack.bounds = {stack.bounds.min_x + fx, stack.bounds.min_y + fy, stack.bounds.max_x + fx,
-                                               stack.bounds.max_y + fy};
+    if (!stack.bounds.empty()) stack.bounds = move_bounds(stack.bounds, frame, into);
 }
 
 }  // namespace scaffold::layers

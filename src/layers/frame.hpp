@@ -32,6 +32,9 @@ Frame model_frame(const LayerStack& stack, const FrameBead& is_model);
 // A frame at the given point, rounded to the micron.
 Frame frame_at(double x, double y);
 
+// A box moved into the frame, or back out of it (`into` false).
+Bounds move_bounds(const Bounds& b, const Frame& frame, bool into);
+
 // Moves every bead (and the bounds) into the frame, or back out of it
 // (`into` false). Ends are rounded to the micron on the way, so the same
 // beads of two files, moved into their frames, are equal to the bit.

@@ -263,6 +263,13 @@ constexpr int kSettleDirections = 16;
 // the share asked is a little over METHOD's for an island that meets
 // another piece of support and counts a few cells more.
 constexpr double kBaseShare = 0.35;
+
+// A loop's vertices as the file will hold them (three decimals), into `out`.
+void write_loop(std::vector<std::array<float, 2>>& out, double x, double y, double r, double width) {
+    out.clear();
+    for (const auto& v : loop_vertices(x, y, r, width)) out.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+}
+
 bool loop_on_footprint(const std::vector<std::array<float, 2>>& written, int layer, const layers::LayerStack& stack,
                        const Settings& s) {
     if (written.size() < 2) return false;
@@ -338,9 +345,7 @@ Settle settle_on_model(const Column& proto, std::vector<Step>& path, const Model
     std::vector<std::array<float, 2>> written;
     auto held = [&](double x, double y) {
         if (!loop_rests(obs, model_layer, x, y, r, s.support_width, reach)) return false;
-        written.clear();
-        for (const auto& v : loop_vertices(x, y, r, s.support_width))
-            written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+        write_loop(written, x, y, r, s.support_width);
         return under.path_held(written, s.marked_bridge_limit) && loop_on_footprint(written, back_layer, stack, s);
     };
     if (held(back.x, back.y)) return Settle::Held;
@@ -603,8 +608,7 @@ void fit_foot_and_raft(Column& c, double top_z, const layers::LayerStack& stack,
 
 bool loop_stands_on_model(double x, double y, double r, int layer, const layers::LayerStack& stack, const Settings& s) {
     std::vector<std::array<float, 2>> written;
-    for (const auto& v : loop_vertices(x, y, r, s.support_width))
-        written.push_back({layers::as_written(v[0]), layers::as_written(v[1])});
+    write_loop(written, x, y, r, s.support_width);
     return loop_on_footprint(written, layer, stack, s);
 }
 

@@ -195,14 +195,24 @@ TEST(PlanPillars, PointsStackedUpASlopeShareOneColumn) {
 // was sized for what then stands on it. The trunk to z = 10 was sized for
 // its own top; a point over layer 70 (z 14) is higher, so it goes down on
 // its own, and the trunk's width at its foot is what its own top needs.
+// The pillar under a point over layer 50 at (50, 50), as a trunk to branch
+// off (steering as the scaffold method does).
+struct TrunkAt50 {
+    std::optional<std::vector<plan::Column>> trunk;
+    plan::Trunks trunks;
+    TrunkAt50(const layers::LayerStack& st, const plan::Obstacles& obs, const Settings& s)
+        : trunk(plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s)), trunks(st, plan::kBranchSteer) {
+        if (trunk) trunks.add(*trunk, st, s);
+    }
+};
+
 TEST(PlanPillars, AColumnStandsOnlyOnATrunkSizedForIt) {
     Settings s;  // --min-stiffness 2
     const layers::LayerStack st = test::empty_stack(20, 80);
     const plan::Obstacles obs(st, s);
-    const auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
+    const TrunkAt50 t(st, obs, s);
+    const auto& [trunk, trunks] = t;
     ASSERT_TRUE(trunk);
-    plan::Trunks trunks(st, plan::kBranchSteer);
-    trunks.add(*trunk, st, s);
     const auto branch = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &trunks);
     ASSERT_TRUE(branch);
     EXPECT_EQ(branch->front().base, plan::Base::Bed);
@@ -693,11 +703,9 @@ TEST(PlanPillars, ABranchLeansByTheGapToTheLoopAboveOnUnevenLayers) {
     const layers::LayerStack st = test::stack_at(
         zs, [](int, layers::Layer& l) { test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter); }, {-5, -5, 80, 80});
     const plan::Obstacles obs(st, s);
-    const auto trunk = plan::drop_pillar(50, 50, 50, plan::Top::Contact, st, obs, s);
-    ASSERT_TRUE(trunk);
-    plan::Trunks trunks(st, plan::kBranchSteer);
-    trunks.add(*trunk, st, s);
-    const auto branch = plan::drop_pillar(51.5, 50, 80, plan::Top::Contact, st, obs, s, &trunks);
+    const TrunkAt50 t(st, obs, s);
+    ASSERT_TRUE(t.trunk);
+    const auto branch = plan::drop_pillar(51.5, 50, 80, plan::Top::Contact, st, obs, s, &t.trunks);
     ASSERT_TRUE(branch);
     ASSERT_EQ(branch->front().base, plan::Base::Column);
     auto centre = [&](double z) {
