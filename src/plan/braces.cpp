@@ -598,8 +598,30 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         std::vector<Column> helper_columns;
         double least = std::numeric_limits<double>::infinity();
         const std::size_t columns_before = sc.columns.size();
-        for (int new_helpers : {0, 1, 2})
-            for (std::size_t t = 0; t < tries.size(); ++t) {
+        // Where no triangle ties W at those levels: its top tie lower, by
+        // kLowerTie at a time while what stands above it still stands (a
+        // tie lower may find partners and helpers clear of the model that
+        // one higher does not: an elephant's column between its legs, tied
+        // at 8.4 mm, not at 9.4).
+        const std::size_t first_tries = tries.size();
+        auto lowered = [&] {
+            for (std::size_t t = 0; t < first_tries; ++t)
+                for (int k = 1; k <= kLowerTies; ++k) {
+                    std::vector<double> lower(tries[t].begin(), tries[t].end() - 1);
+                    const std::size_t before = lower.size();
+                    add_tie(lower, tries[t].back() - k * kLowerTie);
+                    if (lower.size() == before ||
+                        1 / (chain_compliance(W, W.hold, sc, stack, s, lower.back()) + give) < kGiveMargin * s.min_stiffness ||
+                        std::find(tries.begin(), tries.end(), lower) != tries.end())
+                        continue;
+                    tries.push_back(lower);
+                    helped.push_back(1);
+                }
+        };
+        for (int round = 0; round < 2 && bars.empty(); ++round) {
+          if (round == 1) lowered();
+          for (int new_helpers : {0, 1, 2})
+            for (std::size_t t = round == 0 ? 0 : first_tries; t < tries.size(); ++t) {
                 if (new_helpers > 0 && !helped[t]) continue;
                 auto [b, c, h] = tie_up(tries[t], new_helpers);
                 if (b.empty()) continue;
@@ -621,6 +643,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 }
                 sc.columns.resize(columns_before);
             }
+        }
         if (bars.empty()) {
             untied.push_back(wi);
             continue;

@@ -21,6 +21,10 @@ namespace scaffold::plan {
 inline constexpr double kBraceStep = 10.0;
 // Farthest neighbour a column is tied to (centre to centre).
 inline constexpr double kBraceReach = 20.0;
+// Where no triangle ties a column at its levels, its top tie is tried this
+// much lower, up to kLowerTies times.
+inline constexpr double kLowerTie = 1.0;
+inline constexpr int kLowerTies = 3;
 
 // One pillar of a plan: a column standing on the bed or the model and the
 // pieces stacked on it (a chain of drop_pillar), bottom first.

@@ -8,8 +8,12 @@ namespace scaffold::plan {
 
 namespace {
 
-// The model's footprint per layer, as Obstacles keeps it.
-std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, const Settings& settings) {
+// The model's footprint per layer, as Obstacles keeps it; for the layers
+// with a skirt or brim line, also the footprint without it and the line
+// (`skirts`, `skirt_at`).
+template <class SkirtLayer>
+std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, const Settings& settings,
+                                           std::vector<SkirtLayer>& skirts, std::vector<int>& skirt_at) {
     // The grid reaches past the print so pillars beside it can be tested too.
     const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
     std::vector<layers::BitGrid> out;
@@ -28,7 +32,11 @@ std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, cons
             if (!is_skirt) layers::draw_hole_seed(seeds, sg);
         }
         g |= g.holes_with(seeds);
-        if (has_skirt) g |= skirt;
+        skirt_at.push_back(has_skirt ? static_cast<int>(skirts.size()) : -1);
+        if (has_skirt) {
+            skirts.push_back({g, skirt});
+            g |= skirt;
+        }
         out.push_back(std::move(g));
     }
     return out;
@@ -36,10 +44,24 @@ std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, cons
 
 }  // namespace
 
+namespace {
+template <class SkirtLayer>
+std::shared_ptr<const std::vector<layers::BitGrid>> shared_rasters(const layers::LayerStack& stack,
+                                                                   const Settings& settings,
+                                                                   std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
+                                                                   std::vector<int>& skirt_at) {
+    std::vector<SkirtLayer> sk;
+    auto out = std::make_shared<const std::vector<layers::BitGrid>>(model_rasters(stack, settings, sk, skirt_at));
+    skirts = std::make_shared<const std::vector<SkirtLayer>>(std::move(sk));
+    return out;
+}
+}  // namespace
+
 Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
     : inflate(settings.support_width + settings.xy_gap),
-      shared_model_(std::make_shared<const std::vector<layers::BitGrid>>(model_rasters(stack, settings))),
+      shared_model_(shared_rasters(stack, settings, shared_skirts_, skirt_at_)),
       model_(*shared_model_) {
+    skirt_relief_ = std::max(0.0, settings.xy_gap - kSkirtGap);
     z_.reserve(stack.layers.size());
     for (const layers::Layer& layer : stack.layers) {
         z_.push_back(layer.z);
@@ -55,8 +77,9 @@ Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
 }
 
 Obstacles::Obstacles(const Obstacles& other, Shared)
-    : inflate(other.inflate), z_(other.z_), h_(other.h_), below_(other.below_), shared_model_(other.shared_model_),
-      model_(*shared_model_) {
+    : inflate(other.inflate), shared_skirts_(other.shared_skirts_), skirt_at_(other.skirt_at_),
+      skirt_relief_(other.skirt_relief_), z_(other.z_), h_(other.h_), below_(other.below_),
+      shared_model_(other.shared_model_), model_(*shared_model_) {
     coarse_h_ = other.coarse_h_;
     coarse_wpr_ = other.coarse_wpr_;
     grown_.resize(model_.size());
@@ -429,12 +452,25 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
     return f.lookup->lookup(layer, x, y, kFastBudget, fast_bytes_);
 }
 
+bool Obstacles::skirt_disc_clear(int layer, double x, double y, double r) const {
+    const SkirtLayer& k = (*shared_skirts_)[static_cast<std::size_t>(skirt_at_[layer])];
+    return !disc_meets(k.bare, x, y, r) && !disc_meets(k.skirt, x, y, std::max(0.0, r - skirt_relief_));
+}
+
 bool Obstacles::disc_clear(int layer, double x, double y, double r) const {
     if (layer < 0 || layer >= layer_count()) return true;
     if (x == run_.x && y == run_.y && r <= run_.r && layer >= run_.layers.lo && layer <= run_.layers.hi) return true;
     if (int f = fast_disc(layer, x, y, r); f >= 0) return f == 1;
     if (!(r >= 0) || std::abs(x) > 1e7 || std::abs(y) > 1e7) return !disc_meets(model_[layer], x, y, r);  // no int overflow below
     return surely_clear(layer, x, y, r) || !disc_meets(model_[layer], x, y, r);
+}
+
+bool Obstacles::room_clear(int layer, double x, double y, double r) const {
+    if (layer < 0 || layer >= layer_count() || skirt_at_[layer] < 0 || !(skirt_relief_ > 0) || !(r >= 0))
+        return disc_clear(layer, x, y, r);
+    // The model's own lookups know the skirt at the full radius: their
+    // "clear" holds.
+    return disc_clear(layer, x, y, r) || skirt_disc_clear(layer, x, y, r);
 }
 
 bool Obstacles::disc_clear_exact(int layer, double x, double y, double r) const {

@@ -730,3 +730,103 @@ TEST(PlanPillars, ABranchLeansByTheGapToTheLoopAboveOnUnevenLayers) {
     }
     EXPECT_GT(leaning, 2);  // it leans on several layers
 }
+
+// A skirt or brim line is not the model: support keeps plan::kSkirtGap
+// from it, not the 0.5 mm gap, where a column grows wider (room_clear). The
+// hollow box's skirt runs along x = 95 on the first layer, its bead's edge
+// 1.275 mm from x = 96.5 (the box's wall 3.275 mm off): a disc of 1.6 mm
+// meets it with the whole gap counted (disc_clear, how a way down is
+// found), misses it with 0.4 of the gap given back (1.2 < 1.275), and one
+// of 1.8 meets it either way. Beside the model the whole gap counts, and a
+// layer with no skirt answers as disc_clear does.
+TEST(Obstacles, ASkirtLineKeepsOnlyItsOwnGapFromAWideningColumn) {
+    Settings s;
+    const auto st = hollow_box(gcode::Role::Perimeter);
+    const plan::Obstacles obs(st, s);
+    EXPECT_FALSE(obs.disc_clear(0, 96.5, 110, 1.6));
+    EXPECT_TRUE(obs.room_clear(0, 96.5, 110, 1.6));
+    EXPECT_FALSE(obs.room_clear(0, 96.5, 110, 1.8));
+    // 1.5 mm from the box's wall (its edge 1.275 off): the whole gap.
+    EXPECT_FALSE(obs.disc_clear(0, 98.5, 110, 1.6));
+    EXPECT_FALSE(obs.room_clear(0, 98.5, 110, 1.6));
+    for (double r : {1.0, 1.6, 1.8, 2.6}) EXPECT_EQ(obs.room_clear(1, 96.5, 110, r), obs.disc_clear(1, 96.5, 110, r)) << r;
+}
+
+// A column whose bottom loops pass a skirt line 2 mm off its centre (the
+// line's bead edge 1.775 off) widens there as far as kSkirtGap and half a
+// cell from it allow, no longer stopping 0.5 mm short: a plain 2 mm column
+// 40 mm tall on 0.2 mm layers wants r(z) = 1 + t (40 - z) with t about
+// 0.055 (the tube test in braces_test), over 3 mm at the bed; beside the
+// skirt it gets 1.775 - 0.1 = 1.675 at most (and half a cell: the line's
+// raster), where with the whole gap it got 1.275 at most.
+TEST(PlanPillars, AColumnWidensBesideASkirtLineToItsOwnGap) {
+    Settings s;
+    const layers::LayerStack st = test::stack_of(
+        205,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i == 0) test::bead(l, 52, 30, 52, 70, gcode::Role::Skirt);
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    plan::Column plain;
+    plain.x0 = plain.x1 = 50;
+    plain.y0 = plain.y1 = 50;
+    plain.z1 = plain.hold_z = 40;
+    plain.radius = 1.0;
+    plain.top = plan::Top::Bridge;
+    std::vector<plan::Column> chain{plain};
+    ASSERT_TRUE(plan::widen_column(chain, st, obs, s));
+    auto radius_at = [&](double z) {
+        for (const plan::Column& c : chain)
+            if (z > c.z0 + 1e-6 && z <= c.z1 + 1e-6) return plan::column_radius_at(c, z, s);
+        ADD_FAILURE() << "no piece at z " << z;
+        return 0.0;
+    };
+    // (The raster of the line falls up to half a cell short of its edge.)
+    const double r0 = radius_at(st.layers[0].z);
+    EXPECT_GT(r0, 1.5);
+    EXPECT_LE(r0, 1.775 - plan::kSkirtGap + s.resolution / 2);
+    // The next layer has no skirt: as wide as a loop may step out on it.
+    const double r1 = radius_at(st.layers[1].z);
+    EXPECT_GT(r1, r0);
+    EXPECT_LE(r1 - r0, plan::loop_shift_limit(0.2, s) + 1e-9);
+}
+
+// A tip in a slot too narrow for the normal column (walls 2.8 mm apart from
+// z 8 to 12.4, their rasters 1.25 mm from its centre: a 1 mm column needs
+// 1 + 0.5 + 0.05, and with its longest neck, 6 mm, it is 0.87 mm at z 8)
+// gets the thin one (0.6 mm); below the slot one wall goes on to the bed.
+// The normal column would need no taper: 12.4 mm of a 2 mm ring stands
+// 3 x 2303.22 / 12.4^3 = 3.63 N/mm. The thin one, 3 x 260.93 / 12.4^3 =
+// 0.41 N/mm plain, needs one of its own: found with it, its way down steps
+// away from the wall below the slot, where the room is, and it stands the
+// rule. It used to get the normal column's none: a plain way down along
+// the wall, widened only in place there, 0.6 to 0.7 mm (an elephant's
+// column between its legs, 1.2 N/mm).
+TEST(PlanPillars, AThinColumnGetsATaperOfItsOwn) {
+    Settings s;
+    constexpr int kTop = 61;  // z 12.4
+    const layers::LayerStack st = test::stack_of(
+        kTop + 3,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i <= kTop) test::bead(l, 48.6, 40, 48.6, 60, gcode::Role::Perimeter);
+            if (i >= 39 && i <= kTop) test::bead(l, 51.4, 40, 51.4, 60, gcode::Role::Perimeter);
+            if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang: over the slot only
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    EXPECT_NEAR(plan::taper_for(1.0, 12.4, plan::target_stiffness(s), 0, s.support_width, s.modulus), 0, 1e-12);
+    const auto chain = plan::drop_pillar(50, 50, kTop + 1, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain.has_value());
+    ASSERT_FALSE(chain->empty());
+    EXPECT_NEAR(chain->front().radius, 0.6, 1e-9);
+    EXPECT_GT(chain->front().taper, 0);
+    EXPECT_EQ(chain->front().base, plan::Base::Bed);
+    plan::Scaffold sc;
+    sc.columns = *chain;
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 1u);
+    EXPECT_GE(1 / plan::chain_compliance(chains[0], 12.4, sc, st, s), s.min_stiffness);
+}
