@@ -42,5 +42,8 @@ inline constexpr double kLeanInReach = 8.0;
 // Pillars tried under leaning columns for one point, at most (the corpora's
 // and the wild files' hardest point took 62).
 inline constexpr int kLeanInPillars = 256;
+// Lean-ins tried after the first found that falls short of the Standing
+// rule, for one that stands (else the stiffest is taken).
+inline constexpr int kWeakLeanTries = 24;
 
 }  // namespace scaffold::plan

@@ -3,9 +3,11 @@
 #include <cmath>
 
 #include "layers/layer_stack.hpp"
+#include "plan/braces.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "plan/stiffness.hpp"
 #include "support/stacks.hpp"
 
 using namespace scaffold;
@@ -72,4 +74,41 @@ TEST(LeanIn, NothingWhenThePointsOwnContactHasNoRoomAndNoSheetIsBeside) {
     const plan::Obstacles obs(st, s);
     // Inside the wall: no tip fits at the point nor beside it.
     EXPECT_FALSE(plan::lean_in(46, 50, 45, st, obs, s).has_value());
+}
+
+// METHOD's Standing rule: a lean-in whose pillar falls short looks on. The
+// point (50, 50) is at z 30; below z 25 two walls 4 mm apart (x 48 and 52,
+// bead edges 1.775 mm from x = 50) leave a pillar in the slot between them
+// only its plain 2 mm ring and a little: r 1 needs 1 + 0.5 + 0.05 of room,
+// so only centres within 0.225 mm of x = 50 fit, capped there at about
+// 1.23 mm where a pillar 28 mm tall wants some 2.5 at its foot: 3 E I / h^3
+// with a 1.0 mm centre line, E I = 3500 pi 0.45 = 4948, 28^3 = 21952: about
+// 0.68 N/mm. The first lean-in found comes from such a pillar, 1 mm off the
+// point at 45 degrees (the rings go out from 1 mm, 16 directions from +x),
+// 0.64 N/mm as summed; out of the slot a pillar has the room to stand (the
+// first: 2 mm off along +x, over the wall's top, stepping off it below),
+// and the lean-in from it is taken.
+TEST(LeanIn, ALeanInShortOfTheRuleLooksOnForOneThatStands) {
+    Settings s;
+    const auto st = test::stack_of(
+        152,
+        [](int, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (l.z > 25) return;
+            test::bead(l, 48, 40, 48, 60, gcode::Role::Perimeter);
+            test::bead(l, 52, 40, 52, 60, gcode::Role::Perimeter);
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::lean_in(50, 50, 150, st, obs, s);
+    ASSERT_TRUE(chain.has_value());
+    const plan::Column& lean = chain->back();
+    EXPECT_NEAR(lean.x1, 50, 1e-9);
+    EXPECT_NEAR(lean.y1, 50, 1e-9);
+    EXPECT_GT(std::abs(lean.x0 - 50), 1.5);  // not from the slot
+    plan::Scaffold sc;
+    sc.columns = *chain;
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 1u);
+    EXPECT_GE(1 / plan::chain_compliance(chains[0], lean.z1, sc, st, s), plan::kGiveMargin * s.min_stiffness);
 }
