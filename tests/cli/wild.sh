@@ -10,19 +10,20 @@
 # keep the features tested then.
 # Known residual of issue 24 (open), a ratchet at today's figure, listed
 # until it is gone:
-#  - cura31_space_shuttle: columns 21-22 mm tall standing on the hull,
-#    which climb its slope for their first 4 mm (a loop stepping out by the
-#    whole shift limit on each layer may widen by only a fifth of it), with
-#    no triangle of neighbours clear of the model to brace them: the weakest
-#    island 1.31 N/mm (0.251 before tips were widened where there is room;
-#    checked at --min-stiffness 1.3 instead of 2).
+#  - cura31_space_shuttle: a lean-in, a thin column leaning 8 mm in over
+#    4.2 mm whose lean alone gives more than half of what 2 N/mm allows,
+#    and columns 21-23 mm tall standing on the hull, with no triangle of
+#    neighbours clear of the model to brace them: the weakest island
+#    1.67 N/mm (1.45 before lean-ins looked on for a stiffer pillar, 0.251
+#    before tips were widened where there is room; checked at
+#    --min-stiffness 1.6 instead of 2).
 set -euo pipefail
 build="$1"; src="$2"
 wild="$src/../shared/corpus/wild"
 if [ ! -d "$wild" ]; then echo "SKIPPED: no $wild (real-world files; CI has them)"; exit 77; fi
 min_stiffness() {
   case "$1" in
-    cura31_space_shuttle) echo 1.3 ;;
+    cura31_space_shuttle) echo 1.6 ;;
     *) echo 2 ;;
   esac
 }
