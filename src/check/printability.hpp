@@ -106,6 +106,9 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
 double estimate_print_time(const gcode::Program& program);
 
 std::string report_text(const CheckReport& r);
+// `s` as a JSON string, quoted (quotes and backslashes escaped, control
+// characters dropped): file paths (Windows' backslashes) and reasons.
+std::string json_string(const std::string& s);
 std::string report_json(const CheckReport& r);
 
 }  // namespace scaffold::check

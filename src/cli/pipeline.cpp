@@ -522,9 +522,10 @@ Outcome run(const Request& req, spdlog::logger& log) {
     bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
                          program.text.size() < 50'000'000;
     double time_before = estimate_time ? check::estimate_print_time(program) : 0;
-    // Nothing below reads the moves (the splice re-lexes the lines): free
-    // them, the largest part of a big file's memory.
-    std::vector<gcode::Move>().swap(program.moves);
+    // Nothing below reads the moves (the splice re-lexes the lines) but
+    // --check's comparison with the input: free them, the largest part of a
+    // big file's memory.
+    if (!req.check) std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
     // A plate of exact copies: the first copy's overhangs found and planned,
     // its plan moved to the others.
@@ -642,11 +643,35 @@ Outcome run(const Request& req, spdlog::logger& log) {
                  "object in the printer would drop them", spliced.blocks_split);
     for (const plan::Xyz& e : scaffold.unheld_bridge_ends)
         log.warn("a bridge end at ({:.2f}, {:.2f}, z {:.2f}) has no pillar under it: check that bridge", e.x, e.y, e.z);
+    std::optional<check::CheckReport> checked;
+    if (req.check) {
+        if (!req.output_text && (req.output == "-" || gcode::is_device(req.output))) {
+            log.warn("--check: the output is not a file to read back; not checked");
+        } else {
+            progress.say("checking the output");
+            const gcode::Program written =
+                req.output_text ? gcode::parse(*req.output_text, program.path) : gcode::read_file(req.output);
+            check::CheckOptions o;
+            o.overhang_angle_deg = settings.overhang_angle_deg;
+            o.xy_gap = settings.xy_gap;
+            o.resolution = o.standing.resolution = settings.resolution;
+            o.standing.min_stiffness = settings.min_stiffness;
+            o.standing.modulus = settings.modulus;
+            checked = check::check(written, &program, o);
+            if (checked->ok()) {
+                log.info("check: the output passes (held, standing at {} N/mm, no collisions, the model untouched)",
+                         fixed(settings.min_stiffness, 2));
+            } else {
+                for (const std::string& f : checked->failures) log.warn("check: the output would fail: {}", f);
+            }
+            time.lap("check");
+        }
+    }
     for (const auto& [name, s] : time.stages) log.debug("stage {}: {:.1f} ms", name, s * 1000);
 
     if (auto it = req.files.find("report"); it != req.files.end()) {
         std::string j = "{\n";
-        j += "  \"input\": \"" + program.path + "\",\n";
+        j += "  \"input\": " + check::json_string(program.path) + ",\n";
         j += "  \"method\": \"" + std::string(method_name(settings.method)) + "\",\n";
         j += "  \"dialect\": \"" + std::string(gcode::dialect_name(program.dialect)) + "\",\n";
         j += "  \"layers\": " + std::to_string(stack.layers.size()) + ",\n";
@@ -672,6 +697,12 @@ Outcome run(const Request& req, spdlog::logger& log) {
         j += "  \"support_filament_mm\": " + fixed(spliced.filament_mm, 2) + ",\n";
         j += "  \"model_filament_mm\": " + fixed(model_mm, 2) + ",\n";
         j += "  \"layers_touched\": " + std::to_string(spliced.layers_touched) + ",\n";
+        if (checked) {
+            j += "  \"check\": {\"ok\": " + std::string(checked->ok() ? "true" : "false") + ", \"failures\": [";
+            for (std::size_t i = 0; i < checked->failures.size(); ++i)
+                j += (i ? ", " : "") + check::json_string(checked->failures[i]);
+            j += "]},\n";
+        }
         j += "  \"seconds\": {";
         for (std::size_t i = 0; i < time.stages.size(); ++i)
             j += (i ? ", \"" : "\"") + time.stages[i].first + "\": " + fixed(time.stages[i].second, 4);

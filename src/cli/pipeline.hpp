@@ -31,6 +31,10 @@ struct Request {
     // A plate of exact copies (layers::Copies) planned as one copy moved to
     // each; false plans it whole, as any other plate.
     bool plan_copies = true;
+    // --check: the written output judged by scaffold-check's rules against
+    // the input (as `scaffold-check OUT --original IN` with the run's gap,
+    // overhang angle, resolution and --min-stiffness), each failure warned.
+    bool check = false;
     // One plate of a .gcode.3mf (cli/gcode3mf.cpp): its text is taken (moved)
     // from here instead of reading `input`, and the output kept here instead
     // of written.

@@ -72,6 +72,11 @@ int main(int argc, char** argv) {
          "plan a plate of exact copies (a slicer's instances of one object) as a whole, as any other plate; by "
          "default one copy is planned, clear of its neighbours as every copy sees them, and its plan moved to the others "
          "(--dump-points and --dump-layers then show that copy's)")
+        ("check",
+         "after writing, judge the output as scaffold-check does against the input (every overhang held, columns "
+         "stiff enough to stand, no collisions, the model untouched; with this run's --xy-gap, --overhang-angle, "
+         "--resolution and --min-stiffness) and warn with each reason it would fail; the output is kept either way. "
+         "Takes about as long again")
         ("verbose,v", "log each stage and its timing")
         ("quiet,q", "log errors only");
     po::options_description detect("Overhang detection");
@@ -153,6 +158,7 @@ int main(int argc, char** argv) {
         }
     }
     if (vm.count("whole-plate")) req.plan_copies = false;
+    if (vm.count("check")) req.check = true;
     for (const auto& o : detect.options()) {
         const std::string& n = o->long_name();
         if (vm.count(n)) req.overrides["--" + n] = vm[n].as<std::string>();

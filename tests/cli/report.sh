@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # --report: the JSON says what the output's header says (points, pillars,
 # filament), lists every dropped point with its position, and the time of
-# each stage; --buildplate-only drops the points over the model.
+# each stage; --buildplate-only drops the points over the model; --check
+# warns as scaffold-check fails.
 set -euo pipefail
 build="$1"; src="$2"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
@@ -56,6 +57,27 @@ check listed "$(grep -o '{"x": [-0-9.]*, "y": [-0-9.]*, "z": [-0-9.]*, "layer": 
 # Without it they stand on the slab.
 "$build/scaffold" -q --method pillars "$tmp/table.gcode" -o "$tmp/t.gcode" --report "$tmp/t.json"
 check dropped_none "$(val dropped_points "$tmp/t.json")" 0
+
+# --check: the output judged as scaffold-check judges it against the input,
+# each reason it fails warned (the run still succeeds, the file unchanged
+# by the check). The table with its points dropped leaves its top unheld:
+# the check fails, as scaffold-check does; with them it passes.
+"$build/scaffold" --method pillars --buildplate-only --check "$tmp/table.gcode" -o "$tmp/bpc.gcode" \
+  --report "$tmp/bpc.json" 2> "$tmp/bpc.err" || { echo "FAIL: --check made the run fail"; fail=1; }
+cmp -s "$tmp/bp.gcode" "$tmp/bpc.gcode" || { echo "FAIL: --check changed the output"; fail=1; }
+grep -q '^scaffold: warning: check: the output would fail: unheld area' "$tmp/bpc.err" ||
+  { echo "FAIL: --check did not warn of the unheld area:"; cat "$tmp/bpc.err"; fail=1; }
+grep -q '"check": {"ok": false, "failures": \["unheld area' "$tmp/bpc.json" ||
+  { echo "FAIL: the report's check is not a failure"; fail=1; }
+if "$build/scaffold-check" "$tmp/bpc.gcode" --original "$tmp/table.gcode" > /dev/null; then
+  echo "FAIL: scaffold-check passes what --check failed"; fail=1
+fi
+"$build/scaffold" --method pillars --check "$tmp/table.gcode" -o "$tmp/tc.gcode" --report "$tmp/tc.json" 2> "$tmp/tc.err"
+grep -q '^scaffold: info: check: the output passes' "$tmp/tc.err" || { echo "FAIL: --check did not pass:"; cat "$tmp/tc.err"; fail=1; }
+grep -q '"check": {"ok": true, "failures": \[\]}' "$tmp/tc.json" || { echo "FAIL: the report's check is not a pass"; fail=1; }
+"$build/scaffold-check" "$tmp/tc.gcode" --original "$tmp/table.gcode" > /dev/null ||
+  { echo "FAIL: scaffold-check fails what --check passed"; fail=1; }
+grep -q '"check"' "$tmp/t.json" && { echo "FAIL: a report without --check has a check"; fail=1; }
 
 # Volumetric E (Cura's UltiGCode: E in mm^3, ";MATERIAL:" the mm^3 used):
 # the same file with every E times the 1.75 mm filament's area gets the
