@@ -42,9 +42,7 @@ std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, cons
     return out;
 }
 
-}  // namespace
-
-namespace {
+// model_rasters, shared by the Obstacles of every thread (another()).
 template <class SkirtLayer>
 std::shared_ptr<const std::vector<layers::BitGrid>> shared_rasters(const layers::LayerStack& stack,
                                                                    const Settings& settings,
@@ -55,6 +53,7 @@ std::shared_ptr<const std::vector<layers::BitGrid>> shared_rasters(const layers:
     skirts = std::make_shared<const std::vector<SkirtLayer>>(std::move(sk));
     return out;
 }
+
 }  // namespace
 
 Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
