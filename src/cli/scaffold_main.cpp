@@ -76,7 +76,7 @@ int main(int argc, char** argv) {
          "after writing, judge the output as scaffold-check does against the input (every overhang held, columns "
          "stiff enough to stand, no collisions, the model untouched; with this run's --xy-gap, --overhang-angle, "
          "--resolution and --min-stiffness) and warn with each reason it would fail; the output is kept either way. "
-         "Takes about as long again")
+         "Adds the validator's time (0.3-0.5 s on the corpus models)")
         ("verbose,v", "log each stage and its timing")
         ("quiet,q", "log errors only");
     po::options_description detect("Overhang detection");
