@@ -336,7 +336,7 @@ TEST(Obstacles, AnotherSharesTheRastersAndAnswersAlike) {
     const plan::Obstacles obs(st, s);
     const std::unique_ptr<const plan::Obstacles> other = obs.another();
     ASSERT_EQ(other->layer_count(), obs.layer_count());
-    int blocked = 0, clear = 0;
+    int blocked = 0, clear = 0, skirt_room = 0;
     for (int l = 0; l < obs.layer_count(); ++l) {
         EXPECT_EQ(&other->footprint(l), &obs.footprint(l)) << l;
         EXPECT_EQ(other->layer_z(l), obs.layer_z(l));
@@ -347,10 +347,17 @@ TEST(Obstacles, AnotherSharesTheRastersAndAnswersAlike) {
                 EXPECT_EQ(other->disc_clear(l, x, 100.3, r), a) << l << " " << x << " " << r;
                 EXPECT_EQ(other->line_clear(l, x, 90, x, 130), obs.line_clear(l, x, 90, x, 130));
                 (a ? clear : blocked)++;
+                // Beside the skirt (layer 0, x 95) too: room_clear gives
+                // back only the skirt's share of the gap, in either copy.
+                const bool room = obs.room_clear(l, x, 100.3, r);
+                EXPECT_EQ(other->room_clear(l, x, 100.3, r), room) << l << " " << x << " " << r;
+                EXPECT_TRUE(room || !a) << l << " " << x << " " << r;  // clear is room
+                skirt_room += room && !a;
             }
     }
     EXPECT_GT(blocked, 0);
     EXPECT_GT(clear, 0);
+    EXPECT_GT(skirt_room, 0);  // discs that only the skirt's own gap lets through
 }
 
 // A column widened for the Standing rule over a post's foot narrower than
