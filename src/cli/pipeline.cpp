@@ -654,7 +654,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
             check::CheckOptions o;
             o.overhang_angle_deg = settings.overhang_angle_deg;
             o.xy_gap = settings.xy_gap;
-            o.resolution = o.standing.resolution = settings.resolution;
+            o.resolution = settings.resolution;  // the standing rule's too
             o.standing.min_stiffness = settings.min_stiffness;
             o.standing.modulus = settings.modulus;
             checked = check::check(written, &program, o);

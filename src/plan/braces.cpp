@@ -471,13 +471,17 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // The fewest ties are made only with neighbours standing already (a
         // helper that tall costs more than the bars it saves: measured on
         // the corpus, 106 mm more on one bear and a figure failing).
+        // Whether what stands above a tie at b (W's part from there, with
+        // what stands on it) meets the rule afresh there.
+        auto stands_above = [&](double b) {
+            return 1 / (chain_compliance(W, W.hold, sc, stack, s, b) + give) >= kGiveMargin * s.min_stiffness;
+        };
         std::vector<std::vector<double>> tries;
         std::vector<char> helped;  // whether helpers may stand up for tries[i]
         for (std::vector<double>* ties : {&fewest, &grid}) {
             if (ties->empty()) continue;
             std::vector<double> higher = *ties;
-            if (1 / (chain_compliance(W, W.hold, sc, stack, s, ties->back()) + give) < kGiveMargin * s.min_stiffness)
-                add_tie(higher, W.top - 3.0);
+            if (!stands_above(ties->back())) add_tie(higher, W.top - 3.0);
             for (const std::vector<double>* t : {&higher, ties}) {
                 auto it = std::find(tries.begin(), tries.end(), *t);
                 if (it == tries.end()) {
@@ -610,8 +614,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                     std::vector<double> lower(tries[t].begin(), tries[t].end() - 1);
                     const std::size_t before = lower.size();
                     add_tie(lower, tries[t].back() - k * kLowerTie);
-                    if (lower.size() == before ||
-                        1 / (chain_compliance(W, W.hold, sc, stack, s, lower.back()) + give) < kGiveMargin * s.min_stiffness ||
+                    if (lower.size() == before || !stands_above(lower.back()) ||
                         std::find(tries.begin(), tries.end(), lower) != tries.end())
                         continue;
                     tries.push_back(lower);
@@ -619,30 +622,30 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 }
         };
         for (int round = 0; round < 2 && bars.empty(); ++round) {
-          if (round == 1) lowered();
-          for (int new_helpers : {0, 1, 2})
-            for (std::size_t t = round == 0 ? 0 : first_tries; t < tries.size(); ++t) {
-                if (new_helpers > 0 && !helped[t]) continue;
-                auto [b, c, h] = tie_up(tries[t], new_helpers);
-                if (b.empty()) continue;
-                double cost = 0;
-                for (const Bridge& br : b)
-                    cost += 2 * std::hypot(br.x1 - br.x0, br.y1 - br.y0) * static_cast<double>(bar_layers(br.z).size());
-                for (std::size_t k = columns_before; k < sc.columns.size(); ++k) {
-                    const Column& col = sc.columns[k];
-                    for (const auto& [z, l] : tops)
-                        if (z > col.z0 + kEps && z <= col.z1 + kEps)
-                            cost += 2 * std::numbers::pi * loop_shape(column_radius_at(col, z, s), w).centre_radius;
+            if (round == 1) lowered();
+            for (int new_helpers : {0, 1, 2})
+                for (std::size_t t = round == 0 ? 0 : first_tries; t < tries.size(); ++t) {
+                    if (new_helpers > 0 && !helped[t]) continue;
+                    auto [b, c, h] = tie_up(tries[t], new_helpers);
+                    if (b.empty()) continue;
+                    double cost = 0;
+                    for (const Bridge& br : b)
+                        cost += 2 * std::hypot(br.x1 - br.x0, br.y1 - br.y0) * static_cast<double>(bar_layers(br.z).size());
+                    for (std::size_t k = columns_before; k < sc.columns.size(); ++k) {
+                        const Column& col = sc.columns[k];
+                        for (const auto& [z, l] : tops)
+                            if (z > col.z0 + kEps && z <= col.z1 + kEps)
+                                cost += 2 * std::numbers::pi * loop_shape(column_radius_at(col, z, s), w).centre_radius;
+                    }
+                    if (cost < least - kEps) {
+                        least = cost;
+                        bars = std::move(b);
+                        corners = std::move(c);
+                        helpers = std::move(h);
+                        helper_columns.assign(sc.columns.begin() + static_cast<std::ptrdiff_t>(columns_before), sc.columns.end());
+                    }
+                    sc.columns.resize(columns_before);
                 }
-                if (cost < least - kEps) {
-                    least = cost;
-                    bars = std::move(b);
-                    corners = std::move(c);
-                    helpers = std::move(h);
-                    helper_columns.assign(sc.columns.begin() + static_cast<std::ptrdiff_t>(columns_before), sc.columns.end());
-                }
-                sc.columns.resize(columns_before);
-            }
         }
         if (bars.empty()) {
             untied.push_back(wi);

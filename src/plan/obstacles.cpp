@@ -6,17 +6,16 @@
 
 namespace scaffold::plan {
 
-namespace {
-
-// The model's footprint per layer, as Obstacles keeps it; for the layers
-// with a skirt or brim line, also the footprint without it and the line
-// (`skirts`, `skirt_at`).
-template <class SkirtLayer>
-std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, const Settings& settings,
-                                           std::vector<SkirtLayer>& skirts, std::vector<int>& skirt_at) {
+// The model's footprint per layer, as Obstacles keeps it (shared by the
+// Obstacles of every thread, another()); for the layers with a skirt or
+// brim line, also the footprint without it and the line.
+std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
+    const layers::LayerStack& stack, const Settings& settings, std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
+    std::vector<int>& skirt_at) {
     // The grid reaches past the print so pillars beside it can be tested too.
     const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
     std::vector<layers::BitGrid> out;
+    std::vector<SkirtLayer> with_skirt;
     out.reserve(stack.layers.size());
     for (const layers::Layer& layer : stack.layers) {
         // The part's footprint: a hole between sparse infill lines is inside
@@ -32,33 +31,20 @@ std::vector<layers::BitGrid> model_rasters(const layers::LayerStack& stack, cons
             if (!is_skirt) layers::draw_hole_seed(seeds, sg);
         }
         g |= g.holes_with(seeds);
-        skirt_at.push_back(has_skirt ? static_cast<int>(skirts.size()) : -1);
+        skirt_at.push_back(has_skirt ? static_cast<int>(with_skirt.size()) : -1);
         if (has_skirt) {
-            skirts.push_back({g, skirt});
+            with_skirt.push_back({g, skirt});
             g |= skirt;
         }
         out.push_back(std::move(g));
     }
-    return out;
+    skirts = std::make_shared<const std::vector<SkirtLayer>>(std::move(with_skirt));
+    return std::make_shared<const std::vector<layers::BitGrid>>(std::move(out));
 }
-
-// model_rasters, shared by the Obstacles of every thread (another()).
-template <class SkirtLayer>
-std::shared_ptr<const std::vector<layers::BitGrid>> shared_rasters(const layers::LayerStack& stack,
-                                                                   const Settings& settings,
-                                                                   std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
-                                                                   std::vector<int>& skirt_at) {
-    std::vector<SkirtLayer> sk;
-    auto out = std::make_shared<const std::vector<layers::BitGrid>>(model_rasters(stack, settings, sk, skirt_at));
-    skirts = std::make_shared<const std::vector<SkirtLayer>>(std::move(sk));
-    return out;
-}
-
-}  // namespace
 
 Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
     : inflate(settings.support_width + settings.xy_gap),
-      shared_model_(shared_rasters(stack, settings, shared_skirts_, skirt_at_)),
+      shared_model_(model_rasters(stack, settings, shared_skirts_, skirt_at_)),
       model_(*shared_model_) {
     skirt_relief_ = std::max(0.0, settings.xy_gap - kSkirtGap);
     z_.reserve(stack.layers.size());

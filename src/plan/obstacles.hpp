@@ -168,6 +168,9 @@ private:
         layers::BitGrid bare, skirt;
     };
     bool skirt_disc_clear(int layer, double x, double y, double r) const;
+    static std::shared_ptr<const std::vector<layers::BitGrid>> model_rasters(
+        const layers::LayerStack& stack, const Settings& settings,
+        std::shared_ptr<const std::vector<SkirtLayer>>& skirts, std::vector<int>& skirt_at);
     std::shared_ptr<const std::vector<SkirtLayer>> shared_skirts_;
     std::vector<int> skirt_at_;  // per layer: index into *shared_skirts_, or -1
     double skirt_relief_ = 0;
