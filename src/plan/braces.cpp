@@ -13,6 +13,7 @@
 #include "plan/pillars.hpp"
 #include "plan/planner.hpp"
 #include "plan/stiffness.hpp"
+#include "plan/walk.hpp"
 
 namespace scaffold::plan {
 
@@ -25,14 +26,6 @@ constexpr double kMinAngleDeg = 30.0;
 // mm: a partner nearer W's tie than this makes no side of a triangle (bars
 // need their ends' loops apart, 2 mm at the least).
 constexpr double kMinSide = 1.0;
-
-const Column* piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
-    for (int i : chain.pieces) {
-        const Column& c = sc.columns[i];
-        if (z > c.z0 + kEps && z <= c.z1 + kEps) return &c;
-    }
-    return nullptr;
-}
 
 // The smallest angle of triangle abc, degrees.
 double min_angle(double ax, double ay, double bx, double by, double cx, double cy) {
@@ -52,7 +45,7 @@ struct Ring {
 // where it ends under a bar at b.
 std::optional<Ring> ring_at(const PillarChain& p, const Scaffold& sc, const Settings& s, double zc, double b) {
     if (p.base > zc) return std::nullopt;
-    if (const Column* c = piece_at(p, sc, zc)) {
+    if (const Column* c = chain_piece_at(p, sc, zc)) {
         Ring r{0, 0, column_radius_at(*c, zc, s)};
         column_centre_at(*c, zc, r.x, r.y);
         return r;
@@ -80,6 +73,14 @@ bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc,
 
 }  // namespace
 
+const Column* chain_piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
+    for (int i : chain.pieces) {
+        const Column& c = sc.columns[i];
+        if (z > c.z0 + kEps && z <= c.z1 + kEps) return &c;
+    }
+    return nullptr;
+}
+
 std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
     std::vector<PillarChain> out;
     bool open = false;
@@ -102,20 +103,21 @@ std::vector<PillarChain> pillar_chains(const Scaffold& sc) {
     return out;
 }
 
+double column_inertia_at(const Column& c, double z, const Settings& s) {
+    const double w = s.support_width, r = column_radius_at(c, z, s);
+    // The second wall the toolpaths give a wide column not sized for the rule.
+    return ring_inertia(r, w) + (second_wall(c, r, w) ? ring_inertia(r - w * 0.9, w) : 0.0);
+}
+
 double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc, const layers::LayerStack& stack,
                         const Settings& s, double from, double to) {
-    const double w = s.support_width;
     double compliance = 0;
     for (const layers::Layer& layer : stack.layers) {
         if (layer.purge || layer.z > std::min(top, to) + kEps || layer.z <= from + kEps) continue;
-        const Column* c = piece_at(chain, sc, layer.z);
+        const Column* c = chain_piece_at(chain, sc, layer.z);
         if (!c) continue;
-        const double r = column_radius_at(*c, layer.z, s);
-        double inertia = ring_inertia(r, w);
-        // The second wall the toolpaths give a wide column not sized for the rule.
-        if (second_wall(*c, r, w)) inertia += ring_inertia(r - w * 0.9, w);
         const double arm = top - (layer.z - layer.height / 2);
-        compliance += arm * arm * layer.height / (s.modulus * inertia);
+        compliance += arm * arm * layer.height / (s.modulus * column_inertia_at(*c, layer.z, s));
     }
     return compliance;
 }
@@ -131,7 +133,8 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
     std::sort(tops.begin(), tops.end());
     // A bar of the plan (a brace ties at a node, which METHOD counts apart)
     // on its first layer: every pillar it passes through or rests on.
-    for (const Bridge& br : sc.bridges) {
+    for (std::size_t bi = 0; bi < sc.bridges.size(); ++bi) {
+        const Bridge& br = sc.bridges[bi];
         const auto first = std::upper_bound(tops.begin(), tops.end(), br.z + kEps);
         if (br.brace || first == tops.end() || *first > br.z + kBarThickness + kEps) continue;
         const layers::Segment seg{static_cast<float>(br.x0), static_cast<float>(br.y0), static_cast<float>(br.x1),
@@ -141,7 +144,7 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
             if (const auto r = ring_at(chains[i], sc, s, *first, br.z))
                 if (layers::segment_distance(r->x, r->y, seg) <= r->r + w) on.push_back(static_cast<int>(i));
         for (std::size_t a = 0; a < on.size(); ++a)
-            for (std::size_t b = a + 1; b < on.size(); ++b) out.push_back({br.z, on[a], on[b]});
+            for (std::size_t b = a + 1; b < on.size(); ++b) out.push_back({br.z, on[a], on[b], static_cast<int>(bi)});
     }
     // Loops touching: pairs whose boxes over their height come within a
     // bead, layer by layer; a run of touching layers meets at its start.
@@ -347,7 +350,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     };
     auto at = [&](const PillarChain& p, double b, double zc) -> std::optional<At> {
         if (p.base > b - kEps) return std::nullopt;
-        if (const Column* c = piece_at(p, sc, zc)) {
+        if (const Column* c = chain_piece_at(p, sc, zc)) {
             At a{0, 0, loop_shape(column_radius_at(*c, zc, s), w).centre_radius};
             column_centre_at(*c, zc, a.x, a.y);
             return a;
@@ -408,6 +411,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         return out;
     };
     int added = 0;
+    std::vector<BraceNode> nodes;  // the triangles' ties, for the walk below
     const int weak_count = static_cast<int>(chains.size());  // helpers added below are not braced in turn
     std::vector<char> braced(chains.size(), 0);                // a corner of a triangle placed already
     std::vector<int> untied;                                   // weak, and no triangle found
@@ -654,13 +658,46 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // The helpers chosen, back where their pieces' indices point.
         sc.columns.insert(sc.columns.end(), helper_columns.begin(), helper_columns.end());
         braced[wi] = 1;
-        for (int c : corners) braced[c] = 1;
+        std::vector<int> corner_ids{wi};
+        for (int c : corners) {
+            braced[c] = 1;
+            corner_ids.push_back(c);
+        }
         for (const PillarChain& h : helpers) {
+            corner_ids.push_back(static_cast<int>(chains.size()));
             chains.push_back(h);
             braced.push_back(1);
         }
-        for (const Bridge& br : bars) sc.bridges.push_back(br);
+        for (const Bridge& br : bars) {
+            if (corner_ids.size() == 3 && (nodes.empty() || std::abs(nodes.back().z - br.z) > kEps ||
+                                           nodes.back().chains[0] != wi))
+                nodes.push_back({br.z, {corner_ids[0], corner_ids[1], corner_ids[2]}});
+            sc.bridges.push_back(br);
+        }
         added += static_cast<int>(bars.size());
+    }
+    // A column that stands from its own base but that the validator's walk
+    // takes down another, by a bar that ties them where the other is the
+    // stiffer, and that stands short of the rule that way: the plan is better
+    // made without the bar it leaves by (before the widening below, which
+    // moves the columns' pieces).
+    if (short_of_rule) {
+        PlanWalk walk(chains, nodes, sc, stack, s);
+        for (int wi = 0; wi < n; ++wi) {
+            // Judged at its own top, and at the top of what stands on it
+            // with their give: short by the walk where its own way down is not.
+            const PillarChain& W = chains[wi];
+            const double give = sc.columns[W.pieces.front()].give;
+            const WalkSums walked = walk.path(wi, W.top);
+            auto diverted = [&](double top, double extra) {
+                return 1 / (walked.at(top) + extra) < s.min_stiffness &&
+                       1 / (chain_compliance(W, top, sc, stack, s) + extra) >= s.min_stiffness;
+            };
+            if (!diverted(W.top, 0) && !diverted(W.hold, give)) continue;
+            const std::vector<ColumnMeeting> left = walk.departures(wi, W.top);
+            if (!left.empty() && left.front().bar >= 0 && !sc.bridges[left.front().bar].brace)
+                short_of_rule->push_back(static_cast<std::size_t>(left.front().bar));
+        }
     }
     // Weak columns under a bar that no triangle ties: the widest way down
     // that fits, at any share of the taper (the plan's own drop searches it
@@ -679,7 +716,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 short_of_rule->push_back(i);
         }
     }
-    if (short_of_rule) std::sort(short_of_rule->begin(), short_of_rule->end());
+    if (short_of_rule) {
+        std::sort(short_of_rule->begin(), short_of_rule->end());
+        short_of_rule->erase(std::unique(short_of_rule->begin(), short_of_rule->end()), short_of_rule->end());
+    }
     return added;
 }
 

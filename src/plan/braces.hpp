@@ -34,6 +34,13 @@ struct PillarChain {
 };
 std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
 
+// The piece of the pillar whose height range holds z (z0 < z <= z1), or null.
+const Column* chain_piece_at(const PillarChain& chain, const Scaffold& scaffold, double z);
+
+// The second moment of area (mm^4) of a column's loops at height z, as the
+// toolpaths print them (a second wall where they give it one).
+double column_inertia_at(const Column& c, double z, const Settings& settings);
+
 // A pillar's compliance (mm/N) at height `top` over it, summed layer by
 // layer over the loops it prints (their radius as the toolpaths draw them),
 // above height `from` (where a brace ties it, what stands on it starts afresh)
@@ -50,6 +57,7 @@ double chain_compliance(const PillarChain& chain, double top, const Scaffold& sc
 struct ColumnMeeting {
     double z;
     int a, b;
+    int bar = -1;  // the bar of the plan they meet by (index into Scaffold::bridges); -1: loops touching
 };
 std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chains, const Scaffold& scaffold,
                                            const layers::LayerStack& stack, const Settings& settings);
