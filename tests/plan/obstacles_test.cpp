@@ -837,3 +837,47 @@ TEST(PlanPillars, AThinColumnGetsATaperOfItsOwn) {
     ASSERT_EQ(chains.size(), 1u);
     EXPECT_GE(1 / plan::chain_compliance(chains[0], 12.4, sc, st, s), s.min_stiffness);
 }
+
+// A column coming down right over the outer edge of a brim (Cura's: lines
+// side by side round the model, here to x 50.2 on the first layer), in a
+// slot between two thick walls (inner edges at x 48.3 and 51.7, z 0.6 to
+// 12.4: a 2 mm column's centre within 0.2 mm of x 50; no tip beside them
+// within reach) that keeps it from stepping off the brim before: at the
+// bed it has no room and no brim
+// under all of its bottom loop. That loop moves onto the brim, as far as a
+// loop may shift on the one above (0.8 (0.2 tan 55 + 0.225) = 0.4085 mm):
+// at x 49.59 its centre line (radius 0.775) reaches 50.37, within the rest
+// reach (0.8 x 0.2 tan 55 = 0.229) of the brim's edge. So the normal 2 mm
+// column stands there (12.4 mm: 2.05 N/mm with no taper), where the old
+// descent left only a thin one, 1.2 mm, 1.19 N/mm (cura531_benchy at
+// --min-overhang-area 0: the thinnest, 0.18 N/mm).
+TEST(PlanPillars, AColumnAtABrimsEdgeStepsOntoTheBrim) {
+    Settings s;
+    constexpr int kTop = 61;  // z 12.4
+    const layers::LayerStack st = test::stack_of(
+        kTop + 3,
+        [](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (i == 0)
+                for (double y = 40; y <= 60; y += 0.45) test::bead(l, 30, y, 49.975, y, gcode::Role::Skirt);
+            for (int k = 0; i >= 2 && i <= kTop && k < 8; ++k) {  // 3.6 mm thick each
+                test::bead(l, 48.075 - 0.45 * k, 40, 48.075 - 0.45 * k, 60, gcode::Role::Perimeter);
+                test::bead(l, 51.925 + 0.45 * k, 40, 51.925 + 0.45 * k, 60, gcode::Role::Perimeter);
+            }
+            if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang
+        },
+        {-5, -5, 80, 80});
+    const plan::Obstacles obs(st, s);
+    const auto chain = plan::drop_pillar(50, 50, kTop + 1, plan::Top::Contact, st, obs, s);
+    ASSERT_TRUE(chain.has_value());
+    ASSERT_FALSE(chain->empty());
+    EXPECT_NEAR(chain->front().radius, 1.0, 1e-9);
+    EXPECT_EQ(chain->front().base, plan::Base::Model);
+    EXPECT_NEAR(chain->front().z0, 0.2, 1e-6);
+    EXPECT_LT(chain->front().x0, 50 - 0.3);  // moved in over the brim
+    plan::Scaffold sc;
+    sc.columns = *chain;
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 1u);
+    EXPECT_GE(1 / plan::chain_compliance(chains[0], 12.4, sc, st, s), s.min_stiffness);
+}
