@@ -16,6 +16,28 @@ using namespace scaffold;
 
 namespace {
 
+// 0.2 mm layers up to `layers`, a speck of model far away on each (the
+// real Obstacles), and what `more` adds to layer i.
+template <class More>
+layers::LayerStack stack_with(int layers, More more) {
+    return test::stack_of(
+        layers,
+        [&](int i, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            more(i, l);
+        },
+        {-5, -5, 80, 80});
+}
+
+// A column's stiffness at `top` (one pillar, summed as METHOD sums it).
+double stands_at(const std::vector<plan::Column>& chain, double top, const layers::LayerStack& st, const Settings& s) {
+    plan::Scaffold sc;
+    sc.columns = chain;
+    const auto chains = plan::pillar_chains(sc);
+    EXPECT_EQ(chains.size(), 1u);
+    return chains.empty() ? 0.0 : 1 / plan::chain_compliance(chains[0], top, sc, st, s);
+}
+
 void outline(layers::Layer& l, double x0, double y0, double x1, double y1, gcode::Role role) {
     const float xs[5] = {float(x0), float(x1), float(x1), float(x0), float(x0)};
     const float ys[5] = {float(y0), float(y0), float(y1), float(y1), float(y0)};
@@ -814,15 +836,11 @@ TEST(PlanPillars, AColumnWidensBesideASkirtLineToItsOwnGap) {
 TEST(PlanPillars, AThinColumnGetsATaperOfItsOwn) {
     Settings s;
     constexpr int kTop = 61;  // z 12.4
-    const layers::LayerStack st = test::stack_of(
-        kTop + 3,
-        [](int i, layers::Layer& l) {
-            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
-            if (i <= kTop) test::bead(l, 48.6, 40, 48.6, 60, gcode::Role::Perimeter);
-            if (i >= 39 && i <= kTop) test::bead(l, 51.4, 40, 51.4, 60, gcode::Role::Perimeter);
-            if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang: over the slot only
-        },
-        {-5, -5, 80, 80});
+    const layers::LayerStack st = stack_with(kTop + 3, [](int i, layers::Layer& l) {
+        if (i <= kTop) test::bead(l, 48.6, 40, 48.6, 60, gcode::Role::Perimeter);
+        if (i >= 39 && i <= kTop) test::bead(l, 51.4, 40, 51.4, 60, gcode::Role::Perimeter);
+        if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang: over the slot only
+    });
     const plan::Obstacles obs(st, s);
     EXPECT_NEAR(plan::taper_for(1.0, 12.4, plan::target_stiffness(s), 0, s.support_width, s.modulus), 0, 1e-12);
     const auto chain = plan::drop_pillar(50, 50, kTop + 1, plan::Top::Contact, st, obs, s);
@@ -831,11 +849,7 @@ TEST(PlanPillars, AThinColumnGetsATaperOfItsOwn) {
     EXPECT_NEAR(chain->front().radius, 0.6, 1e-9);
     EXPECT_GT(chain->front().taper, 0);
     EXPECT_EQ(chain->front().base, plan::Base::Bed);
-    plan::Scaffold sc;
-    sc.columns = *chain;
-    const auto chains = plan::pillar_chains(sc);
-    ASSERT_EQ(chains.size(), 1u);
-    EXPECT_GE(1 / plan::chain_compliance(chains[0], 12.4, sc, st, s), s.min_stiffness);
+    EXPECT_GE(stands_at(*chain, 12.4, st, s), s.min_stiffness);
 }
 
 // A column coming down right over the outer edge of a brim (Cura's: lines
@@ -854,19 +868,15 @@ TEST(PlanPillars, AThinColumnGetsATaperOfItsOwn) {
 TEST(PlanPillars, AColumnAtABrimsEdgeStepsOntoTheBrim) {
     Settings s;
     constexpr int kTop = 61;  // z 12.4
-    const layers::LayerStack st = test::stack_of(
-        kTop + 3,
-        [](int i, layers::Layer& l) {
-            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
-            if (i == 0)
-                for (double y = 40; y <= 60; y += 0.45) test::bead(l, 30, y, 49.975, y, gcode::Role::Skirt);
-            for (int k = 0; i >= 2 && i <= kTop && k < 8; ++k) {  // 3.6 mm thick each
-                test::bead(l, 48.075 - 0.45 * k, 40, 48.075 - 0.45 * k, 60, gcode::Role::Perimeter);
-                test::bead(l, 51.925 + 0.45 * k, 40, 51.925 + 0.45 * k, 60, gcode::Role::Perimeter);
-            }
-            if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang
-        },
-        {-5, -5, 80, 80});
+    const layers::LayerStack st = stack_with(kTop + 3, [](int i, layers::Layer& l) {
+        if (i == 0)
+            for (double y = 40; y <= 60; y += 0.45) test::bead(l, 30, y, 49.975, y, gcode::Role::Skirt);
+        for (int k = 0; i >= 2 && i <= kTop && k < 8; ++k) {  // 3.6 mm thick each
+            test::bead(l, 48.075 - 0.45 * k, 40, 48.075 - 0.45 * k, 60, gcode::Role::Perimeter);
+            test::bead(l, 51.925 + 0.45 * k, 40, 51.925 + 0.45 * k, 60, gcode::Role::Perimeter);
+        }
+        if (i == kTop + 1) test::bead(l, 49.3, 50, 50.7, 50);  // the overhang
+    });
     const plan::Obstacles obs(st, s);
     const auto chain = plan::drop_pillar(50, 50, kTop + 1, plan::Top::Contact, st, obs, s);
     ASSERT_TRUE(chain.has_value());
@@ -875,9 +885,5 @@ TEST(PlanPillars, AColumnAtABrimsEdgeStepsOntoTheBrim) {
     EXPECT_EQ(chain->front().base, plan::Base::Model);
     EXPECT_NEAR(chain->front().z0, 0.2, 1e-6);
     EXPECT_LT(chain->front().x0, 50 - 0.3);  // moved in over the brim
-    plan::Scaffold sc;
-    sc.columns = *chain;
-    const auto chains = plan::pillar_chains(sc);
-    ASSERT_EQ(chains.size(), 1u);
-    EXPECT_GE(1 / plan::chain_compliance(chains[0], 12.4, sc, st, s), s.min_stiffness);
+    EXPECT_GE(stands_at(*chain, 12.4, st, s), s.min_stiffness);
 }
