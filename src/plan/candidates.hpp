@@ -291,7 +291,7 @@ private:
     void evaluate(int seed, Scratch& sc);
     void evaluate_all(const std::vector<int>& seeds);
     // The model's answers as asked through `mv` (the calling thread's view).
-    bool bar_clear(const ModelView& mv, double x0, double y0, double x1, double y1, double z);
+    bool bar_clear(const ModelView& mv, Scratch& sc, double x0, double y0, double x1, double y1, double z);
     bool end_stands(const ModelView& mv, double x, double y, double z);
     // The answer stored for `key`, or ask() stored (the model asked
     // outside the lock when each thread has a view of its own).

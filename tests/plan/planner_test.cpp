@@ -196,6 +196,22 @@ TEST(PlannerModel, NoBridgeThroughAWall) {
     EXPECT_EQ(holders(walled, xyz.size()), std::vector<int>(xyz.size(), 1));
 }
 
+// A bar's clearance is sampled along its line at fixed places (shared by
+// every bar on that line and height) and at its two ends, never past them:
+// a row whose last point is 17.45, 1.5 mm (pillar radius and gap) plus
+// 0.05 short of the wall's face at 19, gets its bar; a sample on the
+// line's grid past that end (17.6) would have blocked it. One more point
+// at 17.65 and the bar to it is blocked: the row's bar stops at 17.45.
+TEST(PlannerModel, ABarEndingJustShortOfTheGapIsClear) {
+    Settings s;
+    const auto sc = plan::plan_scaffold(points_of({{7.45, 20, 20}, {12.45, 20, 20}, {17.45, 20, 20}}), wall_at_20(), s);
+    ASSERT_EQ(sc.bridges.size(), 1u);
+    EXPECT_NEAR(std::max(sc.bridges[0].x0, sc.bridges[0].x1), 17.45, 1e-9);
+    const auto more =
+        plan::plan_scaffold(points_of({{7.45, 20, 20}, {12.45, 20, 20}, {17.45, 20, 20}, {17.65, 20, 20}}), wall_at_20(), s);
+    for (const plan::Bridge& b : more.bridges) EXPECT_LT(std::max(b.x0, b.x1), 17.5) << b.x0 << " -> " << b.x1;
+}
+
 TEST(PlannerModel, NoBridgeThroughAWallOfTheRealObstacles) {
     // The same rows, the wall now drawn into the layers (1 mm wide at x = 20, up to z 30).
     auto st = empty_stack(32);
