@@ -14,16 +14,17 @@
 #    4.2 mm whose lean alone gives more than half of what 2 N/mm allows,
 #    and columns 21-23 mm tall standing on the hull, with no triangle of
 #    neighbours clear of the model to brace them: the weakest island
-#    1.67 N/mm (1.45 before lean-ins looked on for a stiffer pillar, 0.251
+#    1.79 N/mm (1.67 before a lean-in short of the rule leaned as wide as a
+#    pillar, 1.45 before lean-ins looked on for a stiffer pillar, 0.251
 #    before tips were widened where there is room; checked at
-#    --min-stiffness 1.6 instead of 2).
+#    --min-stiffness 1.75 instead of 2).
 set -euo pipefail
 build="$1"; src="$2"
 wild="$src/../shared/corpus/wild"
 if [ ! -d "$wild" ]; then echo "SKIPPED: no $wild (real-world files; CI has them)"; exit 77; fi
 min_stiffness() {
   case "$1" in
-    cura31_space_shuttle) echo 1.6 ;;
+    cura31_space_shuttle) echo 1.75 ;;
     *) echo 2 ;;
   esac
 }
