@@ -57,14 +57,6 @@ std::optional<Ring> ring_at(const PillarChain& p, const Scaffold& sc, const Sett
     return std::nullopt;
 }
 
-// Whether column i is stacked on the piece just before it, where that one
-// ends (the next piece of the same pillar, not a branch).
-bool stacked_on_previous(const Scaffold& sc, int i) {
-    if (i <= 0 || sc.columns[i].base != Base::Column) return false;
-    const Column &c = sc.columns[i], &prev = sc.columns[i - 1];
-    return std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps;
-}
-
 // Whether two pillars' loops touch on the layer at z (column_meetings' test).
 bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc, const Settings& s, double z) {
     const auto p = ring_at(a, sc, s, z, -1), q = ring_at(b, sc, s, z, -1);
@@ -72,6 +64,12 @@ bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc,
 }
 
 }  // namespace
+
+bool stacked_on_previous(const Scaffold& sc, int i) {
+    if (i <= 0 || sc.columns[i].base != Base::Column) return false;
+    const Column &c = sc.columns[i], &prev = sc.columns[i - 1];
+    return std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps;
+}
 
 const Column* chain_piece_at(const PillarChain& chain, const Scaffold& sc, double z) {
     for (int i : chain.pieces) {

@@ -34,6 +34,10 @@ struct PillarChain {
 };
 std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
 
+// Whether column i is stacked on the piece just before it, where that one
+// ends (the next piece of the same pillar, not a branch).
+bool stacked_on_previous(const Scaffold& scaffold, int i);
+
 // The piece of the pillar whose height range holds z (z0 < z <= z1), or null.
 const Column* chain_piece_at(const PillarChain& chain, const Scaffold& scaffold, double z);
 

@@ -242,9 +242,10 @@ bool BridgeSearch::bar_clear(const ModelView& mv, Scratch& sc, double x0, double
         }
         // The bars a search asks about lie on a few lines (bunny: 105,000
         // bars on 4,800 lines and heights): discs at fixed samples along the
-        // line, kBarSample apart, each asked once for all its bars and grown
-        // by half the step, so every point of a bar keeps the gap from the
-        // model (a bar asked alone sampled its own length every two cells).
+        // line, kBarSample apart, each asked once for all the bars over it,
+        // and at the bar's own two ends; no sample past an end. So a bar is
+        // sampled as densely as when it sampled its own length every two
+        // cells (segment_clear, still asked where the view has no disc test).
         const int D = s_.sweep_directions;
         double th = std::atan2(y1 - y0, x1 - x0);
         if (th < 0) th += std::numbers::pi;

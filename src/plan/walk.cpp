@@ -23,17 +23,11 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
     std::vector<char> taken(scaffold.columns.size(), 0);
     for (const PillarChain& p : chains)
         for (int i : p.pieces) taken[static_cast<std::size_t>(i)] = 1;
-    const std::vector<Column>& cols = scaffold.columns;
-    // Column i stacked on the last piece of the last pillar added here.
-    auto continues = [&](int i) {
-        if (chains_.size() == chains.size() || chains_.back().pieces.back() != i - 1) return false;
-        const Column &c = cols[static_cast<std::size_t>(i)], &prev = cols[static_cast<std::size_t>(i - 1)];
-        return c.base == Base::Column && std::abs(c.z0 - prev.z1) < kEps && std::hypot(c.x0 - prev.x1, c.y0 - prev.y1) < kEps;
-    };
-    for (int i = 0; i < static_cast<int>(cols.size()); ++i) {
+    for (int i = 0; i < static_cast<int>(scaffold.columns.size()); ++i) {
         if (taken[static_cast<std::size_t>(i)]) continue;
-        const Column& c = cols[static_cast<std::size_t>(i)];
-        if (continues(i)) {
+        const Column& c = scaffold.columns[static_cast<std::size_t>(i)];
+        // The next piece of the last pillar added here.
+        if (chains_.size() > chains.size() && chains_.back().pieces.back() == i - 1 && stacked_on_previous(scaffold, i)) {
             chains_.back().pieces.push_back(i);
             chains_.back().top = c.z1;
         } else {
