@@ -98,17 +98,19 @@ struct Candidate {
 using BarKey = std::tuple<long, long, long, long, long>;
 struct BarKeyHash {
     std::size_t operator()(const BarKey& k) const {
-        // std::hash<long> is the identity: mix the bits (splitmix64's
-        // finaliser), or nearby coordinates crowd the same buckets.
-        std::uint64_t h = 0;
-        auto mix = [&h](long v) {
-            h = (h ^ static_cast<std::uint64_t>(v)) + 0x9e3779b97f4a7c15ULL;
-            h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;
-            h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
-            h ^= h >> 31;
-        };
-        mix(std::get<0>(k)); mix(std::get<1>(k)); mix(std::get<2>(k)); mix(std::get<3>(k)); mix(std::get<4>(k));
-        return static_cast<std::size_t>(h);
+        // std::hash<long> is the identity, and nearby coordinates would
+        // crowd the same slots: the five folded by multiplication, then one
+        // murmur3 finaliser to spread the low bits (the probe uses them).
+        // Called on every span a seed scans: one finaliser, not five.
+        constexpr std::uint64_t kMul = 0x9e3779b97f4a7c15ULL;
+        std::uint64_t h = static_cast<std::uint64_t>(std::get<0>(k));
+        h = h * kMul + static_cast<std::uint64_t>(std::get<1>(k));
+        h = h * kMul + static_cast<std::uint64_t>(std::get<2>(k));
+        h = h * kMul + static_cast<std::uint64_t>(std::get<3>(k));
+        h = h * kMul + static_cast<std::uint64_t>(std::get<4>(k));
+        h = (h ^ (h >> 33)) * 0xff51afd7ed558ccdULL;
+        h = (h ^ (h >> 33)) * 0xc4ceb9fe1a85ec53ULL;
+        return static_cast<std::size_t>(h ^ (h >> 33));
     }
 };
 
