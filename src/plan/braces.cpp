@@ -413,6 +413,37 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     const int weak_count = static_cast<int>(chains.size());  // helpers added below are not braced in turn
     std::vector<char> braced(chains.size(), 0);                // a corner of a triangle placed already
     std::vector<int> untied;                                   // weak, and no triangle found
+    // The triangles placed: the corners (W first; helpers by their index in
+    // chains) and the levels they are tied at.
+    struct Tied {
+        std::array<int, 3> ids;
+        std::vector<double> levels;
+    };
+    std::vector<Tied> tied;
+    // A column printed as one with a corner of a triangle already placed (a
+    // pillar of another point that shares its way down: the same base, its
+    // loops on the corner's at every tie) is tied by the same bars. Where the
+    // triangle's nodes still stand at its own top, it is braced there
+    // without bars of its own (on benchies and busts, up to six such columns
+    // were each tied by their own copy of the same bars, 0.01 mm apart).
+    auto shares_a_triangle = [&](int wi, const PillarChain& W, double give) {
+        for (const Tied& t : tied)
+            for (int corner = 0; corner < 3; ++corner) {
+                const PillarChain& V = chains[t.ids[corner]];
+                if (bases_apart(W, V)) continue;
+                bool together = true;
+                for (double b : t.levels) {
+                    const double zc = bar_layers(b).front().first;
+                    const auto a = at(W, b, zc), v = at(V, b, zc);
+                    together = together && a && v && std::hypot(a->x - v->x, a->y - v->y) <= w / 2;
+                }
+                const int p = t.ids[(corner + 1) % 3], q = t.ids[(corner + 2) % 3];
+                if (!together || !nodes_stand(W, chains[p], chains[q], t.levels, give, {wi, p, q})) continue;
+                for (double b : t.levels) nodes.push_back({b, {wi, p, q}});
+                return true;
+            }
+        return false;
+    };
     for (int wi = 0; wi < weak_count; ++wi) {
         if (braced[wi]) continue;
         const PillarChain W = chains[wi];
@@ -422,6 +453,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // with a smaller margin (the give is the connectors' worst case).
         const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
         if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
+        if (shares_a_triangle(wi, W, give)) {
+            braced[wi] = 1;
+            continue;
+        }
         // Helpers are shaped as W is: one sized for the rule is a trunk beside
         // a plain W, which is then a twig at every tie (under a quarter of its
         // k, METHOD), and the triangle no brace. (Set once per W: Settings
@@ -665,6 +700,12 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             corner_ids.push_back(static_cast<int>(chains.size()));
             chains.push_back(h);
             braced.push_back(1);
+        }
+        if (corner_ids.size() == 3) {
+            std::vector<double> levels;
+            for (const Bridge& br : bars)
+                if (levels.empty() || std::abs(levels.back() - br.z) > kEps) levels.push_back(br.z);
+            tied.push_back({{corner_ids[0], corner_ids[1], corner_ids[2]}, std::move(levels)});
         }
         for (const Bridge& br : bars) {
             if (corner_ids.size() == 3 && (nodes.empty() || std::abs(nodes.back().z - br.z) > kEps ||

@@ -110,6 +110,27 @@ TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedWhereTheyStopStanding) {
     }
 }
 
+// A fourth column printed as one with the first (another point's pillar
+// down the same way: same base, same loops, 0.2 mm taller) is tied by the
+// same triangle: above the top tie, its 11 mm stand 3 x 2303.22 / 11^3 =
+// 5.19 N/mm afresh. The same 6 bars, not 6 more lying on them 0.01 mm
+// apart (which the bar check found not held as built, on a plate's bunny).
+TEST_F(BraceScene, AColumnPrintedAsOneWithACornerIsTiedByItsTriangle) {
+    sc.columns.push_back(plain(30, 30, 40));
+    sc.columns.push_back(plain(40, 30, 40));
+    sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
+    plan::Scaffold three = sc;
+    ASSERT_EQ(plan::add_braces(three, st, obs, s, {}), 6);
+    sc.columns.push_back(plain(30, 30, 40.2));
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 6);
+    ASSERT_EQ(sc.bridges.size(), three.bridges.size());
+    for (std::size_t i = 0; i < sc.bridges.size(); ++i) {
+        EXPECT_DOUBLE_EQ(sc.bridges[i].x0, three.bridges[i].x0);
+        EXPECT_DOUBLE_EQ(sc.bridges[i].y1, three.bridges[i].y1);
+        EXPECT_DOUBLE_EQ(sc.bridges[i].z, three.bridges[i].z);
+    }
+}
+
 // A column with no neighbour gets two helper columns up to its top tie,
 // 10 or 12 mm away, 60 degrees apart: an equilateral triangle.
 TEST_F(BraceScene, ALoneWeakColumnGetsTwoHelpers) {
