@@ -408,6 +408,42 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         if (!nodes_stand(W, P, Q, levels, give, ids)) return {};
         return out;
     };
+    // Whether a helper's pieces keep a bead clear of every column of the
+    // plan up to z_top, loops, feet and rafts: one that touches another
+    // column is that column, met lower down (METHOD), and the triangle it
+    // makes no node (a shuttle's helper dropped onto a pillar that shares its
+    // base with W: 0.42 N/mm where the plan counted on a node).
+    auto reach_at = [&](const Column& c, double z) {
+        double r = column_radius_at(c, z, s);
+        if (c.base == Base::Bed && z <= c.z0 + 2 * s.layer_height + kEps)
+            r = std::max({r, c.foot_radius, c.raft_size / std::numbers::sqrt2});
+        return r;
+    };
+    auto clear_of_plan = [&](const std::vector<Column>& chain, double z_top) {
+        for (const Column& h : chain) {
+            const double hr = std::max({column_radius_at(h, h.z0, s), column_radius_at(h, h.z1, s), h.foot_radius,
+                                        h.raft_size / std::numbers::sqrt2});
+            for (const Column& c : sc.columns) {
+                const double lo = std::max(h.z0, c.z0), hi = std::min({h.z1, c.z1, z_top});
+                if (hi <= lo + kEps) continue;
+                const double cr = std::max({column_radius_at(c, c.z0, s), column_radius_at(c, c.z1, s), c.foot_radius,
+                                            c.raft_size / std::numbers::sqrt2});
+                if (std::min(h.x0, h.x1) - hr > std::max(c.x0, c.x1) + cr + w ||
+                    std::min(c.x0, c.x1) - cr > std::max(h.x0, h.x1) + hr + w ||
+                    std::min(h.y0, h.y1) - hr > std::max(c.y0, c.y1) + cr + w ||
+                    std::min(c.y0, c.y1) - cr > std::max(h.y0, h.y1) + hr + w)
+                    continue;
+                for (auto it = std::upper_bound(tops.begin(), tops.end(), std::make_pair(lo + kEps, -1));
+                     it != tops.end() && it->first <= hi + kEps; ++it) {
+                    double hx, hy, cx, cy;
+                    column_centre_at(h, it->first, hx, hy);
+                    column_centre_at(c, it->first, cx, cy);
+                    if (std::hypot(hx - cx, hy - cy) <= reach_at(h, it->first) + reach_at(c, it->first) + w) return false;
+                }
+            }
+        }
+        return true;
+    };
     int added = 0;
     std::vector<BraceNode> nodes;  // the triangles' ties, for the walk below
     const int weak_count = static_cast<int>(chains.size());  // helpers added below are not braced in turn
@@ -580,6 +616,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                                 return std::nullopt;
                         }
                 }
+                if (!clear_of_plan(*chain, b_top)) return std::nullopt;
                 PillarChain p;
                 p.base = chain->front().z0;
                 p.top = chain->back().z1;

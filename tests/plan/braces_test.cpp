@@ -146,6 +146,25 @@ TEST_F(BraceScene, ALoneWeakColumnGetsTwoHelpers) {
     }
 }
 
+// A helper stands clear of the plan's other columns: one on a stub where the
+// first helper would go (10 mm east of W) would be that stub's column, met
+// at the bed, and the triangle no node (METHOD). A 5 mm stub stands 3 x
+// 2303.22 / 5^3 = 55 N/mm (no brace of its own) and reaches no tie (no
+// partner). Both helpers then keep their loops a bead (0.4 mm) off the
+// stub's: centres more than 1 + 1 + 0.4 mm apart.
+TEST_F(BraceScene, AHelperKeepsClearOfTheOtherColumns) {
+    sc.columns.push_back(plain(40, 40, 40));
+    sc.columns.push_back(plain(50, 40, 5));
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 9);
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 4u);
+    for (int k = 2; k < 4; ++k) {
+        const plan::Column& h = sc.columns[chains[k].pieces.front()];
+        EXPECT_GT(std::hypot(h.x0 - 50, h.y0 - 40), 2.4) << h.x0 << ", " << h.y0;
+        EXPECT_NEAR(chains[k].top, 30, 1e-6);
+    }
+}
+
 // A column already stiff enough is left alone: 10 mm stands 6.9 N/mm, and
 // the rule off ties nothing.
 TEST_F(BraceScene, StiffColumnsAndTheRuleOffTieNothing) {
