@@ -188,15 +188,23 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         for (std::size_t i = 0; ok && i < c->carried.size(); ++i) {
             const int id = c->carried[i];
             const Active& a = search.active(id);
-            auto col = connector(*c, a, m, s);
             // METHOD's Standing rule: a connector is a thin column on a bar;
             // with what stands on it, it may give at most half of what the
-            // whole may (the pillar under the bar takes the rest).
-            double top = std::max(a.z, a.hold), give_i = 0;
-            if (col && target_stiffness(s) > 0) {
-                give_i = a.give + ring_compliance(col->radius, 0, top, col->z0, col->z1, s.support_width, s.modulus);
-                if (give_i > 0.5 / target_stiffness(s)) col.reset();
+            // whole may (the pillar under the bar takes the rest). Its give
+            // depends on the heights alone (a kConnectorRadius stick from the
+            // bar's top up to a.z, however it leans), so it is asked before
+            // the connector is searched for (a plate's bunny copy: 3056 bars
+            // offered whose connectors were all too tall).
+            const double top = std::max(a.z, a.hold);
+            double give_i = 0;
+            bool stiff = true;
+            if (target_stiffness(s) > 0 && a.z > c->z + kBarThickness) {
+                give_i = a.give + ring_compliance(kConnectorRadius, 0, top, c->z + kBarThickness, a.z, s.support_width,
+                                                  s.modulus);
+                stiff = give_i <= 0.5 / target_stiffness(s);
             }
+            std::optional<Column> col;
+            if (stiff) col = connector(*c, a, m, s);
             if (col) {
                 hold = std::max(hold, top);
                 give = std::max(give, give_i);
