@@ -87,6 +87,10 @@ struct BridgeSearch::Scratch {
         std::vector<signed char> state;
     };
     std::unordered_map<BarKey, LineSamples, BarKeyHash> lines;
+    // The shared answers this thread has seen (ends_, bars_ of ModelAnswers),
+    // asked here first: the shared tables are behind a lock the threads
+    // would otherwise take for every end and bar they scan.
+    BarTable<bool> ends_seen, bars_seen;
 };
 
 struct BridgeSearch::Index {
@@ -204,6 +208,15 @@ void BridgeSearch::mark_around(double x, double y, double margin) {
 }
 
 template <class Ask>
+bool BridgeSearch::answer(BarTable<bool>& table, BarTable<bool>& seen, const Key& key, Ask ask) {
+    if (threads_ > 1)
+        if (const bool* known = seen.find(key)) return *known;
+    bool ok = answer(table, key, ask);
+    if (threads_ > 1) seen.insert(key, ok);
+    return ok;
+}
+
+template <class Ask>
 bool BridgeSearch::answer(BarTable<bool>& table, const Key& key, Ask ask) {
     auto lock = model_lock();
     if (const bool* known = table.find(key)) return *known;
@@ -229,7 +242,7 @@ void BridgeSearch::stale_near(double x0, double y0, double x1, double y1) {
 
 bool BridgeSearch::bar_clear(const ModelView& mv, Scratch& sc, double x0, double y0, double x1, double y1, double z) {
     if (!mv.segment_clear) return true;
-    return answer(answers_->bars, key_of(x0, y0, x1, y1, z), [&] {
+    return answer(answers_->bars, sc.bars_seen, key_of(x0, y0, x1, y1, z), [&] {
         // The bar fills the layers up to kBarThickness above z; its ends reach
         // into the pillar tops, so the whole pillar radius keeps the gap.
         std::vector<double> layers = mv.tops_between(z, z + kBarThickness, s_.layer_height);
@@ -285,9 +298,10 @@ bool BridgeSearch::bar_clear(const ModelView& mv, Scratch& sc, double x0, double
 // asked once per end): a span with an end that cannot stand is no candidate,
 // rather than a best that is taken, fails and is rejected one at a time
 // (elephant: 17,000 such rejects before this test moved here).
-bool BridgeSearch::end_stands(const ModelView& mv, double x, double y, double z) {
+bool BridgeSearch::end_stands(const ModelView& mv, Scratch& sc, double x, double y, double z) {
     if (!mv.end_stands) return true;
-    return answer(answers_->ends, Key{microns(x), microns(y), microns(z), 0, 0}, [&] { return mv.end_stands(x, y, z); });
+    return answer(answers_->ends, sc.ends_seen, Key{microns(x), microns(y), microns(z), 0, 0},
+                  [&] { return mv.end_stands(x, y, z); });
 }
 
 void BridgeSearch::no_connector(int id, const Candidate& c) {
@@ -453,7 +467,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
             stands_z = z;
         }
         auto end_ok = [&](int i, double x, double y) {
-            if (!stands[i]) stands[i] = end_stands(*sc.model, x, y, z) ? 1 : 2;
+            if (!stands[i]) stands[i] = end_stands(*sc.model, sc, x, y, z) ? 1 : 2;
             return stands[i] == 1;
         };
         return end_ok(a, x0, y0) && end_ok(b, x1, y1);

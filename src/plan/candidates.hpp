@@ -266,7 +266,7 @@ public:
     void reject(const Candidate& c);
     // Whether a pillar can stand under a bridge end at (x, y, z): the model
     // view's test, asked once per end and remembered.
-    bool end_stands(double x, double y, double z) { return end_stands(*model_, x, y, z); }
+    bool end_stands(double x, double y, double z) { return end_stands(*model_, *scratch_[0], x, y, z); }
     // No connector reaches point `id` from c's bar: bars on the same line at
     // the same height no longer count it as carried. Without this a seed
     // offers the same failing bar again with each other pair of ends, one
@@ -294,11 +294,15 @@ private:
     void evaluate_all(const std::vector<int>& seeds);
     // The model's answers as asked through `mv` (the calling thread's view).
     bool bar_clear(const ModelView& mv, Scratch& sc, double x0, double y0, double x1, double y1, double z);
-    bool end_stands(const ModelView& mv, double x, double y, double z);
+    bool end_stands(const ModelView& mv, Scratch& sc, double x, double y, double z);
     // The answer stored for `key`, or ask() stored (the model asked
     // outside the lock when each thread has a view of its own).
     template <class Ask>
     bool answer(BarTable<bool>& table, const Key& key, Ask ask);
+    // The same, asked first of the answers this thread has seen (`seen`,
+    // its Scratch's) when several threads share the table.
+    template <class Ask>
+    bool answer(BarTable<bool>& table, BarTable<bool>& seen, const Key& key, Ask ask);
     // Thread t's view of the model.
     const ModelView& model_of(int t) const { return t == 0 || helpers_.empty() ? *model_ : *helpers_[t - 1]; }
 
