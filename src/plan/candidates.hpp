@@ -199,12 +199,15 @@ private:
 // instead of asking again (bunny.prusaslicer25: 516k pillar descents over
 // four plans, 130k of them distinct). Looked up only, never iterated.
 class BarEndAnswers;  // plan/pillars.hpp
+class LeanInAnswers;  // plan/lean_in.hpp
 struct ModelAnswers {
     BarTable<bool> bars;  // bar_clear
     BarTable<bool> ends;  // end_stands
     // What the pillar searches under bridge ends found, for the model view's
     // end_stands (set by plan_scaffold).
     std::shared_ptr<BarEndAnswers> bar_ends;
+    // The lean-ins weak pillars are compared with (set by plan_scaffold).
+    std::shared_ptr<LeanInAnswers> lean_ins;
 };
 
 // The set of active points with, for each point and sweep direction, the

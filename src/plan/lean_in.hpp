@@ -3,7 +3,11 @@
 // sloping shoulder, a lip over a narrow slot): a thin column leaning in to
 // it from a pillar that stands up to a layer lower beside the obstacle, as
 // far as a loop may shift on the one below per layer.
+#include <cmath>
+#include <map>
+#include <mutex>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -21,13 +25,31 @@ std::optional<std::vector<Column>> lean_in(double x, double y, int overhang_laye
                                            const Obstacles& obstacles, const Settings& settings,
                                            const Trunks* trunks = nullptr);
 
+// Lean-ins on their own pillars (no trunks), by the point's place and
+// layer: they depend on the model alone, and the pipeline plans the same
+// model again (without bars not held as built) up to 11 times.
+class LeanInAnswers {
+public:
+    using Chain = std::optional<std::vector<Column>>;
+    std::optional<Chain> find(double x, double y, int layer) const;
+    void insert(double x, double y, int layer, const Chain& chain);
+
+private:
+    using Key = std::tuple<long long, long long, int>;
+    mutable std::mutex mutex_;
+    std::map<Key, Chain> map_;
+};
+
 // The scaffold's support of a point that no bridge carries: a pillar whose
 // tip lies under the sheet (drop_pillar), else one leaning in (lean_in),
 // else (with `beside`) a pillar whose tip stands beside the sheet within
-// reach.
+// reach. METHOD's Standing rule: a pillar short of it is compared with a
+// lean-in on a pillar of its own (`known` keeps those), and the stiffer
+// taken.
 std::optional<std::vector<Column>> support_point(double x, double y, int overhang_layer,
                                                  const layers::LayerStack& stack, const Obstacles& obstacles,
-                                                 const Settings& settings, const Trunks* trunks, bool beside = true);
+                                                 const Settings& settings, const Trunks* trunks, bool beside = true,
+                                                 LeanInAnswers* known = nullptr);
 
 // support_point under each of points.points[which], in that order, added to
 // the plan with the point's index; each stands on the plan's columns where

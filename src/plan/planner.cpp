@@ -404,6 +404,8 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // Bridge ends need a pillar that drop_pillar can really build.
     if (!answers) answers = std::make_shared<ModelAnswers>();
     if (!answers->bar_ends) answers->bar_ends = std::make_shared<BarEndAnswers>();
+    if (!answers->lean_ins) answers->lean_ins = std::make_shared<LeanInAnswers>();
+    const std::shared_ptr<LeanInAnswers> lean_ins = answers->lean_ins;  // answers moves to the search below
     auto view_of = [&](const Obstacles& o) {
         ModelView v = model_view(o);
         v.end_stands = [&stack, &s, &by_z, op = &o, known = answers->bar_ends](double x, double y, double z) {
@@ -457,7 +459,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
         std::optional<std::vector<Column>> chain;
         if (overhang_layer >= 0 && a.point < 0)
             chain = drop_pillar(a.x, a.y, overhang_layer, Top::Bridge, stack, obs, s, &trunks, TipPlaces::Any, true, a.hold, a.give);
-        if (overhang_layer >= 0 && a.point >= 0) chain = support_point(a.x, a.y, overhang_layer, stack, obs, s, &trunks);
+        if (overhang_layer >= 0 && a.point >= 0) chain = support_point(a.x, a.y, overhang_layer, stack, obs, s, &trunks, true, lean_ins.get());
         if (!chain) {
             if (a.point >= 0) out.dropped_points.push_back(a.point);
             else out.unheld_bridge_ends.push_back({a.x, a.y, a.z});

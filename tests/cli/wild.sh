@@ -8,26 +8,10 @@
 # untouched in place. Exits 77 (skipped) when the folder is absent; the
 # synthetic reproductions in tests/layers/dialects_test and tests/splice
 # keep the features tested then.
-# Known residual of issue 24 (open), a ratchet at today's figure, listed
-# until it is gone:
-#  - cura31_space_shuttle: a lean-in, a thin column leaning 8 mm in over
-#    4.2 mm whose lean alone gives more than half of what 2 N/mm allows,
-#    and columns 21-23 mm tall standing on the hull, with no triangle of
-#    neighbours clear of the model to brace them: the weakest island
-#    1.79 N/mm (1.67 before a lean-in short of the rule leaned as wide as a
-#    pillar, 1.45 before lean-ins looked on for a stiffer pillar, 0.251
-#    before tips were widened where there is room; checked at
-#    --min-stiffness 1.75 instead of 2).
 set -euo pipefail
 build="$1"; src="$2"
 wild="$src/../shared/corpus/wild"
 if [ ! -d "$wild" ]; then echo "SKIPPED: no $wild (real-world files; CI has them)"; exit 77; fi
-min_stiffness() {
-  case "$1" in
-    cura31_space_shuttle) echo 1.75 ;;
-    *) echo 2 ;;
-  esac
-}
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 fail=0; n=0
 for gz in "$wild"/*.gcode.gz; do
@@ -56,7 +40,7 @@ for gz in "$wild"/*.gcode.gz; do
     n=$((n+1)); continue
   fi
   if [ $must_refuse -eq 1 ]; then echo "FAIL $name: a spiral vase was not refused"; fail=1; fi
-  set +e; "$build/scaffold-check" --min-stiffness "$(min_stiffness "$name")" "$tmp/inplace.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; crc=$?; set -e
+  set +e; "$build/scaffold-check" "$tmp/inplace.gcode" --original "$tmp/in.gcode" > "$tmp/report.txt"; crc=$?; set -e
   if [ $crc -ne 0 ]; then
     echo "FAIL $name:"; cat "$tmp/report.txt"; fail=1
   fi
