@@ -14,6 +14,7 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <boost/iterator/function_output_iterator.hpp>
 
+#include "plan/stiffness.hpp"
 #include "plan/workers.hpp"
 
 namespace scaffold::plan {
@@ -69,6 +70,7 @@ std::vector<double> ModelView::tops_between(double z_lo, double z_hi, double lay
 struct BridgeSearch::Scratch {
     struct Near {
         double du, adv, t, w;  // along, |across|, highest bar that carries it, across + its z
+        double low;            // lowest bar that carries it
         int id;
         int miss0 = 0, miss1 = 0;  // heights no bar on this line carries it: miss_z[miss0, miss1)
     };
@@ -142,7 +144,8 @@ long microns(double v) {
 }  // namespace
 
 BridgeSearch::BridgeSearch(const BridgeSearch& o, const ModelView& model, std::vector<const ModelView*> helpers)
-    : model_(&model), helpers_(std::move(helpers)), s_(o.s_), reach_(o.reach_), points_(o.points_), alive_(o.alive_), seeds_(o.seeds_),
+    : model_(&model), helpers_(std::move(helpers)), s_(o.s_), reach_(o.reach_), points_(o.points_), low_(o.low_),
+      alive_(o.alive_), seeds_(o.seeds_),
       dirty_(o.dirty_), ranked_(o.ranked_), rejected_(o.rejected_), answers_(o.answers_), misses_(o.misses_),
       evaluations_(o.evaluations_), index_(std::make_shared<Index>(*o.index_)), threads_(o.threads_) {
     // Views for as many threads as the original had, or none.
@@ -164,9 +167,25 @@ BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y
     return {r(x0), r(y0), r(x1), r(y1), r(z)};
 }
 
+double lowest_carrying_bar(const Active& a, const Settings& s) {
+    const double target = target_stiffness(s);
+    if (!(target > 0)) return 0;
+    const double allowed = 0.5 / target - a.give, top = std::max(a.z, a.hold);
+    auto fits = [&](double z) {
+        return z + kBarThickness >= a.z ||
+               ring_compliance(kConnectorRadius, 0, top, z + kBarThickness, a.z, s.support_width, s.modulus) <= allowed;
+    };
+    if (fits(0)) return 0;
+    // The connector gives less the shorter it is: the least z that fits.
+    double lo = 0, hi = a.z;
+    for (int i = 0; i < 50; ++i) (fits((lo + hi) / 2) ? hi : lo) = (lo + hi) / 2;
+    return hi - 1e-7;  // a bar on the boundary still offered: the planner decides
+}
+
 int BridgeSearch::add(const Active& a) {
     int id = size();
     points_.push_back(a);
+    low_.push_back(lowest_carrying_bar(a, s_));
     alive_.push_back(1);
     misses_.emplace_back();
     seeds_.resize(seeds_.size() + static_cast<std::size_t>(s_.sweep_directions));
@@ -349,12 +368,12 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         const int m0 = static_cast<int>(sc.miss_z.size());
         for (const Miss& ms : misses_[p])
             if (ms.direction == k && std::abs(ms.v - vq) < kEps) sc.miss_z.push_back(ms.z);
-        pts.push_back({du, adv, t, adv + a.z, p, m0, static_cast<int>(sc.miss_z.size())});
+        pts.push_back({du, adv, t, adv + a.z, low_[p], p, m0, static_cast<int>(sc.miss_z.size())});
     }
     // Whether a bar at height z on this line carries pts[i].
     auto carries = [&](int i, double z) {
         const Near& p = pts[i];
-        if (p.t < z - kEps) return false;
+        if (p.t < z - kEps || z < p.low) return false;
         for (int m = p.miss0; m < p.miss1; ++m)
             if (std::abs(sc.miss_z[m] - z) < kEps) return false;
         return true;

@@ -31,6 +31,8 @@ inline constexpr double kMaxLeanPerLayer = 0.5;
 
 // Thickness of a bridge bar (two layers); its connectors start on top of it.
 inline constexpr double kBarThickness = 0.4;
+// Radius of a slanted connector: it stays on the 0.9 mm wide bridge bar.
+inline constexpr double kConnectorRadius = 0.75;
 
 // Scoring of the method, exposed for tests.
 double bridge_gain(int supported, double z, double length);
@@ -82,6 +84,14 @@ struct Active {
     // (mm/N) of the connectors between, for METHOD's Standing rule.
     double hold = 0, give = 0;
 };
+
+// The lowest bar that may carry a (0: any): METHOD's Standing rule as the
+// planner holds each connector to it, a kConnectorRadius stick from the
+// bar's top up to a.z giving, with what stands on a (a.give, up to a.hold),
+// at most half of what the whole may. A bar lower down is no bar for a: its
+// connector would be turned down when the bar is offered (a plate's bunny
+// copy: 3056 bars offered and turned down so, each a search again).
+double lowest_carrying_bar(const Active& a, const Settings& settings);
 
 // One candidate bridge at height z (bottom of the bar) between (x0,y0) and
 // (x1,y1), with the active points it would carry (ids in BridgeSearch).
@@ -315,6 +325,7 @@ private:
     const Settings& s_;
     double reach_ = 0;  // radius of the window's bounding circle
     std::vector<Active> points_;
+    std::vector<double> low_;       // per point id: lowest_carrying_bar
     std::vector<char> alive_;
     std::vector<Seed> seeds_;       // id * D + direction
     std::vector<int> dirty_;        // seeds to recompute before the next best()

@@ -17,9 +17,6 @@
 
 namespace scaffold::plan {
 
-// Radius of a slanted connector: it stays on the 0.9 mm wide bridge bar.
-inline constexpr double kConnectorRadius = 0.75;
-
 // The model as the planner sees it, answered by the real obstacle rasters.
 // The view refers to `obstacles`, which must outlive it.
 ModelView model_view(const Obstacles& obstacles);
