@@ -24,6 +24,20 @@ layers::LayerStack walled() {
         {30, 30, 70, 70});
 }
 
+// 0.2 mm layers to z 30.4, walls 4 mm apart (x 48 and 52, y 40..60) up
+// to z 25: a slot under (50, 50).
+layers::LayerStack slotted() {
+    return test::stack_of(
+        152,
+        [](int, layers::Layer& l) {
+            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
+            if (l.z > 25) return;
+            test::bead(l, 48, 40, 48, 60, gcode::Role::Perimeter);
+            test::bead(l, 52, 40, 52, 60, gcode::Role::Perimeter);
+        },
+        {-5, -5, 80, 80});
+}
+
 }  // namespace
 
 TEST(LeanIn, AThinColumnLeansFromAPillarToThePointAsFarAsALoopMayShift) {
@@ -90,15 +104,7 @@ TEST(LeanIn, NothingWhenThePointsOwnContactHasNoRoomAndNoSheetIsBeside) {
 // and the lean-in from it is taken.
 TEST(LeanIn, ALeanInShortOfTheRuleLooksOnForOneThatStands) {
     Settings s;
-    const auto st = test::stack_of(
-        152,
-        [](int, layers::Layer& l) {
-            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
-            if (l.z > 25) return;
-            test::bead(l, 48, 40, 48, 60, gcode::Role::Perimeter);
-            test::bead(l, 52, 40, 52, 60, gcode::Role::Perimeter);
-        },
-        {-5, -5, 80, 80});
+    const auto st = slotted();
     const plan::Obstacles obs(st, s);
     const auto chain = plan::lean_in(50, 50, 150, st, obs, s);
     ASSERT_TRUE(chain.has_value());
@@ -166,15 +172,7 @@ TEST(LeanIn, ALeanInShortOfTheRuleLeansAsWideAsAPillarWhereItFits) {
 // was taken.
 TEST(LeanIn, APillarTheModelCapsGivesWayToALeanInThatStands) {
     Settings s;
-    const auto st = test::stack_of(
-        152,
-        [](int, layers::Layer& l) {
-            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
-            if (l.z > 25) return;
-            test::bead(l, 48, 40, 48, 60, gcode::Role::Perimeter);
-            test::bead(l, 52, 40, 52, 60, gcode::Role::Perimeter);
-        },
-        {-5, -5, 80, 80});
+    const auto st = slotted();
     const plan::Obstacles obs(st, s);
     auto stiffness = [&](const std::vector<plan::Column>& chain) {
         plan::Scaffold sc;
