@@ -167,14 +167,20 @@ BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y
     return {r(x0), r(y0), r(x1), r(y1), r(z)};
 }
 
-double lowest_carrying_bar(const Active& a, const Settings& s) {
+double connector_compliance(const Active& a, double bar_z, const Settings& s) {
+    return ring_compliance(kConnectorRadius, 0, std::max(a.z, a.hold), bar_z + kBarThickness, a.z, s.support_width,
+                           s.modulus);
+}
+
+double connector_allowance(const Settings& s) {
     const double target = target_stiffness(s);
-    if (!(target > 0)) return 0;
-    const double allowed = 0.5 / target - a.give, top = std::max(a.z, a.hold);
-    auto fits = [&](double z) {
-        return z + kBarThickness >= a.z ||
-               ring_compliance(kConnectorRadius, 0, top, z + kBarThickness, a.z, s.support_width, s.modulus) <= allowed;
-    };
+    return target > 0 ? 0.5 / target : 0;
+}
+
+double lowest_carrying_bar(const Active& a, const Settings& s) {
+    if (!(connector_allowance(s) > 0)) return 0;
+    const double allowed = connector_allowance(s) - a.give;
+    auto fits = [&](double z) { return z + kBarThickness >= a.z || connector_compliance(a, z, s) <= allowed; };
     if (fits(0)) return 0;
     // The connector gives less the shorter it is: the least z that fits.
     double lo = 0, hi = a.z;

@@ -198,10 +198,9 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
             const double top = std::max(a.z, a.hold);
             double give_i = 0;
             bool stiff = true;
-            if (target_stiffness(s) > 0 && a.z > c->z + kBarThickness) {
-                give_i = a.give + ring_compliance(kConnectorRadius, 0, top, c->z + kBarThickness, a.z, s.support_width,
-                                                  s.modulus);
-                stiff = give_i <= 0.5 / target_stiffness(s);
+            if (connector_allowance(s) > 0 && a.z > c->z + kBarThickness) {
+                give_i = a.give + connector_compliance(a, c->z, s);
+                stiff = give_i <= connector_allowance(s);
             }
             std::optional<Column> col;
             if (stiff) col = connector(*c, a, m, s);
