@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "check/footprint.hpp"
 #include "layers/raster.hpp"
 #include "layers/regions.hpp"
 
@@ -132,47 +133,6 @@ void add_weak(std::vector<WeakIsland>& v, const WeakIsland& w, int keep) {
     std::stable_sort(v.begin(), v.end(), [](const WeakIsland& a, const WeakIsland& b) { return a.k < b.k; });
     if (static_cast<int>(v.size()) > keep) v.resize(static_cast<std::size_t>(std::max(0, keep)));
 }
-
-// Whether the model's footprint covers a cell, holes up to kSmallHoleMm2
-// filled: a flood through the empty cells (4-neighbours, the complement of
-// 8-connected material) that stays small and off the grid's edge is a hole.
-struct Footprint {
-    layers::BitGrid grid;
-    int i0 = 0, j0 = 0;              // lattice cell of the grid's (0, 0)
-    std::vector<std::uint8_t> state; // per cell: 0 not known, 1 small hole, 2 open
-    std::vector<int> queue;
-    std::size_t limit = 0;
-
-    bool covers(int gi, int gj) {
-        const int i = gi - i0, j = gj - j0, nx = grid.width(), ny = grid.height();
-        if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
-        if (grid.get(i, j)) return true;
-        const std::size_t at = static_cast<std::size_t>(j) * nx + i;
-        if (state[at]) return state[at] == 1;
-        queue.clear();
-        queue.push_back(static_cast<int>(at));
-        state[at] = 3;  // visiting
-        bool open = false;
-        for (std::size_t q = 0; q < queue.size(); ++q) {
-            const int c = queue[q], ci = c % nx, cj = c / nx;
-            if (ci == 0 || cj == 0 || ci == nx - 1 || cj == ny - 1 || queue.size() > limit) {
-                open = true;
-                break;
-            }
-            const int next[4][2] = {{ci - 1, cj}, {ci + 1, cj}, {ci, cj - 1}, {ci, cj + 1}};
-            for (const auto& n : next) {
-                const std::size_t k = static_cast<std::size_t>(n[1]) * nx + n[0];
-                if (grid.get(n[0], n[1]) || state[k]) continue;
-                state[k] = 3;
-                queue.push_back(static_cast<int>(k));
-            }
-        }
-        // An open flood stopped early: the cells it reached belong to the
-        // same large region; the rest are found open on their own.
-        for (int c : queue) state[static_cast<std::size_t>(c)] = open ? 2 : 1;
-        return !open;
-    }
-};
 
 // Cells on one lattice for every grid of the rule, so a cell of one layer's
 // grid is the same place in the next one's.
