@@ -303,6 +303,9 @@ private:
         bool has = false;
         bool bar_checked = false;  // best's bar already tested against the model
         int blocked = 0;           // bars of this seed found blocked so far
+        bool ends_checked = false; // a pillar stands under the ends of every span taken on the way to best
+        int ends_failed = 0;       // bests of this seed with a span whose end could not stand
+        std::vector<std::array<double, 5>> takes;  // spans taken without asking their ends: x0, y0, x1, y1, z
         Candidate best;
     };
     using Key = BarKey;
