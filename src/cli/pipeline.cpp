@@ -226,6 +226,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     std::vector<plan::Bridge> forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
+    plan::BraceAnswers brace_answers;  // the helper pillars dropped, asked again by the next round
     bool bars_held = false;  // the last plan's bars checked and all held
     // Should the rounds run out, each plan still keeping a few such bars: the
     // plan with the fewest not held that carry points (brace bars are left
@@ -254,7 +255,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // METHOD's Standing rule: columns too weak for it (no room to widen)
         // tied to two neighbours in triangles.
         std::vector<std::size_t> short_of_rule;
-        if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden, &short_of_rule))
+        if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden, &short_of_rule, &brace_answers))
             log.debug("{} bars brace weak columns", n);
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
         // A bar whose line rule (b) does not hold as built (it passes along

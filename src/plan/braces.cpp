@@ -1,6 +1,7 @@
 #include "plan/braces.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <climits>
 #include <cmath>
@@ -318,7 +319,7 @@ double widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains
 }  // namespace
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-               const std::vector<Bridge>& forbidden, std::vector<std::size_t>* short_of_rule) {
+               const std::vector<Bridge>& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers) {
     const double target = target_stiffness(s);
     if (!(target > 0)) return 0;
     std::vector<PillarChain> chains = pillar_chains(sc);
@@ -600,8 +601,22 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             std::vector<PillarChain> helpers;
             auto helper = [&](double x, double y) -> std::optional<PillarChain> {
                 const int above = bar_layers(b_top).front().second;
-                auto chain = drop_pillar(x, y, above, Top::Bridge, stack, obs, helper_settings, nullptr, TipPlaces::Any,
-                                         true, b_top);
+                auto drop = [&] {
+                    return drop_pillar(x, y, above, Top::Bridge, stack, obs, helper_settings, nullptr, TipPlaces::Any, true,
+                                       b_top);
+                };
+                std::optional<std::vector<Column>> chain;
+                if (answers) {
+                    auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+                    const std::array<std::uint64_t, 6> key{bits(x), bits(y), bits(b_top), static_cast<std::uint64_t>(above),
+                                                           bits(helper_settings.pillar_radius),
+                                                           bits(helper_settings.min_stiffness)};
+                    auto it = answers->helpers.find(key);
+                    if (it == answers->helpers.end()) it = answers->helpers.emplace(key, drop()).first;
+                    chain = it->second;
+                } else {
+                    chain = drop();
+                }
                 if (!chain || chain->empty() || std::abs(chain->back().z1 - b_top) > kEps) return std::nullopt;
                 // A helper is optional: only where it keeps a whole cell more
                 // than the gap on every layer (with half, a SuperSlicer benchy's

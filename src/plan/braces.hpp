@@ -7,6 +7,9 @@
 // kBraceStep of height: each part between ties then stands on its own short
 // length, a few N/mm for a plain 2 mm ring.
 #include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <vector>
 
 #include "gcode/settings.hpp"
@@ -94,8 +97,18 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
 // gets the bars (indices, none a brace) whose end stands on such a pillar
 // and which, widened or not, still falls short of --min-stiffness by that
 // walk: the plan is better made without them.
+// The helper pillars add_braces dropped, by place, height and shape (x, y,
+// the bar's height and layer, radius and stiffness asked, as bits): the
+// plans made again on the same model ask for most of them again
+// (elephant: 456 drops over two plans, 241 of them distinct). A drop
+// depends on the model and those alone.
+struct BraceAnswers {
+    std::map<std::array<std::uint64_t, 6>, std::optional<std::vector<Column>>> helpers;
+};
+
+// `answers` (optional): kept by the caller over plans made again.
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
                const Settings& settings, const std::vector<Bridge>& forbidden,
-               std::vector<std::size_t>* short_of_rule = nullptr);
+               std::vector<std::size_t>* short_of_rule = nullptr, BraceAnswers* answers = nullptr);
 
 }  // namespace scaffold::plan

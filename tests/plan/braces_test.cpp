@@ -146,6 +146,31 @@ TEST_F(BraceScene, ALoneWeakColumnGetsTwoHelpers) {
     }
 }
 
+// The helpers dropped are kept in the answers a plan made again passes in:
+// the same plan again asks for no drop, and gets the same bars and helpers.
+// The answers are what it goes by: with each one turned to "no pillar
+// there", the same call has to look further round for its helpers.
+TEST_F(BraceScene, HelpersDroppedOnceAreTakenFromTheAnswersAfter) {
+    sc.columns.push_back(plain(40, 40, 40));
+    plan::Scaffold again = sc, believed = sc;
+    plan::BraceAnswers answers;
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}, nullptr, &answers), 9);
+    const std::size_t asked = answers.helpers.size();
+    EXPECT_GE(asked, 2u);
+    EXPECT_EQ(plan::add_braces(again, st, obs, s, {}, nullptr, &answers), 9);
+    EXPECT_EQ(answers.helpers.size(), asked);
+    ASSERT_EQ(again.columns.size(), sc.columns.size());
+    for (std::size_t i = 0; i < sc.columns.size(); ++i) {
+        EXPECT_EQ(again.columns[i].x0, sc.columns[i].x0);
+        EXPECT_EQ(again.columns[i].y0, sc.columns[i].y0);
+        EXPECT_EQ(again.columns[i].z1, sc.columns[i].z1);
+    }
+    for (std::size_t i = 0; i < sc.bridges.size(); ++i) EXPECT_EQ(again.bridges[i].x1, sc.bridges[i].x1);
+    for (auto& [key, drop] : answers.helpers) drop.reset();
+    plan::add_braces(believed, st, obs, s, {}, nullptr, &answers);
+    EXPECT_GT(answers.helpers.size(), asked);
+}
+
 // A helper stands clear of the plan's other columns: one on a stub where the
 // first helper would go (10 mm east of W) would be that stub's column, met
 // at the bed, and the triangle no node (METHOD). A 5 mm stub stands 3 x
