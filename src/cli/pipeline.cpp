@@ -346,7 +346,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     const layers::Bounds first = copies.prototype;
     const Clock::time_point t0 = Clock::now();
     const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, kCopyWindow);
-    const plan::Obstacles obstacles(seen, settings);
+    const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads));
     SharedCavities cavities(first_copy);
     log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     progress.say("planning one of {} copies", n);
@@ -407,7 +407,8 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
 // groups of their own, on the request's threads.
 GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress) {
-    const auto obstacles = std::make_unique<const plan::Obstacles>(stack, settings);
+    const auto obstacles =
+        std::make_unique<const plan::Obstacles>(stack, settings, plan::worker_count(stack.layers.size(), req.threads));
     const std::vector<plan::PointGroup> groups =
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings));

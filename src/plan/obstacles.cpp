@@ -1,8 +1,11 @@
 #include "plan/obstacles.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
+
+#include "plan/workers.hpp"
 
 namespace scaffold::plan {
 
@@ -11,40 +14,50 @@ namespace scaffold::plan {
 // brim line, also the footprint without it and the line.
 std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
     const layers::LayerStack& stack, const Settings& settings, std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
-    std::vector<int>& skirt_at) {
+    std::vector<int>& skirt_at, int threads) {
     // The grid reaches past the print so pillars beside it can be tested too.
     const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
-    std::vector<layers::BitGrid> out;
+    const std::size_t n = stack.layers.size();
+    std::vector<layers::BitGrid> out(n), skirt_of(n);
+    std::vector<char> has_skirt(n, 0);
+    // Each layer on its own (a plate's are the most of building the
+    // obstacles), on `threads` threads, a layer at a time in turn.
+    std::atomic<std::size_t> next{0};
+    run_workers(std::max(1, std::min<int>(threads, static_cast<int>(n))), [&](int) {
+        for (std::size_t l; (l = next.fetch_add(1)) < n;) {
+            const layers::Layer& layer = stack.layers[l];
+            // The part's footprint: a hole between sparse infill lines is
+            // inside the part, no room for a pillar; a cavity of the model is
+            // open to support (layers::draw_hole_seed). A skirt or brim loop
+            // encloses nothing (filled, it would wall off the whole bed
+            // around the part).
+            layers::BitGrid g = proto, skirt = proto, seeds = proto;
+            for (const layers::Segment& sg : layer.segments) {
+                const bool is_skirt = sg.role == gcode::Role::Skirt;
+                has_skirt[l] = has_skirt[l] || is_skirt;
+                (is_skirt ? skirt : g).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                if (!is_skirt) layers::draw_hole_seed(seeds, sg);
+            }
+            g |= g.holes_with(seeds);
+            if (has_skirt[l]) skirt_of[l] = std::move(skirt);
+            out[l] = std::move(g);
+        }
+    });
     std::vector<SkirtLayer> with_skirt;
-    out.reserve(stack.layers.size());
-    for (const layers::Layer& layer : stack.layers) {
-        // The part's footprint: a hole between sparse infill lines is inside
-        // the part, no room for a pillar; a cavity of the model is open to
-        // support (layers::draw_hole_seed). A skirt or brim loop encloses
-        // nothing (filled, it would wall off the whole bed around the part).
-        layers::BitGrid g = proto, skirt = proto, seeds = proto;
-        bool has_skirt = false;
-        for (const layers::Segment& sg : layer.segments) {
-            const bool is_skirt = sg.role == gcode::Role::Skirt;
-            has_skirt = has_skirt || is_skirt;
-            (is_skirt ? skirt : g).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
-            if (!is_skirt) layers::draw_hole_seed(seeds, sg);
+    for (std::size_t l = 0; l < n; ++l) {
+        skirt_at.push_back(has_skirt[l] ? static_cast<int>(with_skirt.size()) : -1);
+        if (has_skirt[l]) {
+            with_skirt.push_back({out[l], skirt_of[l]});
+            out[l] |= skirt_of[l];
         }
-        g |= g.holes_with(seeds);
-        skirt_at.push_back(has_skirt ? static_cast<int>(with_skirt.size()) : -1);
-        if (has_skirt) {
-            with_skirt.push_back({g, skirt});
-            g |= skirt;
-        }
-        out.push_back(std::move(g));
     }
     skirts = std::make_shared<const std::vector<SkirtLayer>>(std::move(with_skirt));
     return std::make_shared<const std::vector<layers::BitGrid>>(std::move(out));
 }
 
-Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings)
+Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads)
     : inflate(settings.support_width + settings.xy_gap),
-      shared_model_(model_rasters(stack, settings, shared_skirts_, skirt_at_)),
+      shared_model_(model_rasters(stack, settings, shared_skirts_, skirt_at_, threads)),
       model_(*shared_model_) {
     skirt_relief_ = std::max(0.0, settings.xy_gap - kSkirtGap);
     z_.reserve(stack.layers.size());

@@ -98,7 +98,8 @@ inline constexpr double kSkirtGap = 0.1;
 
 class Obstacles {
 public:
-    Obstacles(const layers::LayerStack& stack, const Settings& settings);
+    // `threads`: rasterise the layers on that many threads (the result is the same).
+    Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads = 1);
     // Caches of its own over the same model rasters, not copied: for another
     // thread (the caches fill as they are asked and are no thread's to
     // share; the rasters, a plate's largest part, never change).
@@ -170,7 +171,7 @@ private:
     bool skirt_disc_clear(int layer, double x, double y, double r) const;
     static std::shared_ptr<const std::vector<layers::BitGrid>> model_rasters(
         const layers::LayerStack& stack, const Settings& settings,
-        std::shared_ptr<const std::vector<SkirtLayer>>& skirts, std::vector<int>& skirt_at);
+        std::shared_ptr<const std::vector<SkirtLayer>>& skirts, std::vector<int>& skirt_at, int threads);
     std::shared_ptr<const std::vector<SkirtLayer>> shared_skirts_;
     std::vector<int> skirt_at_;  // per layer: index into *shared_skirts_, or -1
     double skirt_relief_ = 0;

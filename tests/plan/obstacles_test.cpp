@@ -382,6 +382,28 @@ TEST(Obstacles, AnotherSharesTheRastersAndAnswersAlike) {
     EXPECT_GT(skirt_room, 0);  // discs that only the skirt's own gap lets through
 }
 
+// Rasterised on three threads, the layers are the same, skirt and all: the
+// footprints cell for cell, and the skirt's room beside the part.
+TEST(Obstacles, BuiltOnThreadsTheRastersAreTheSame) {
+    Settings s;
+    const auto st = hollow_box(gcode::Role::ExternalPerimeter);
+    const plan::Obstacles one(st, s, 1), three(st, s, 3);
+    ASSERT_EQ(three.layer_count(), one.layer_count());
+    std::size_t cells = 0;
+    for (int l = 0; l < one.layer_count(); ++l) {
+        const layers::BitGrid &a = one.footprint(l), &b = three.footprint(l);
+        ASSERT_TRUE(a.same_shape(b)) << l;
+        for (int j = 0; j < a.height(); ++j)
+            for (int i = 0; i < a.width(); ++i) {
+                ASSERT_EQ(a.get(i, j), b.get(i, j)) << l << " " << i << " " << j;
+                cells += a.get(i, j);
+            }
+        for (double x = 94; x <= 126; x += 0.7)
+            EXPECT_EQ(three.room_clear(l, x, 100.3, 1.0), one.room_clear(l, x, 100.3, 1.0)) << l << " " << x;
+    }
+    EXPECT_GT(cells, 0u);
+}
+
 // A column widened for the Standing rule over a post's foot narrower than
 // its bottom loop (the shelf's): its bottom loop is narrowed to what lies on
 // the post all round and the loops above widen again, so it keeps the full
