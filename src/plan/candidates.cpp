@@ -641,7 +641,6 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     sd.best = std::move(best);
     sd.has = true;
     sd.bar_checked = eager;
-    sd.ends_checked = ends_eager;
 }
 
 // Seeds a thread must have to be worth starting: a thread costs its start
@@ -714,10 +713,10 @@ std::optional<Candidate> BridgeSearch::best() {
         // After the bar (a blocked bar spares the pillar searches): a span
         // taken on the way whose end cannot stand would not have been
         // taken, and the seed finds another best asking as it goes.
-        if (ok && !sd.ends_checked) {
+        if (ok && !sd.takes.empty()) {
             for (const auto& t : sd.takes)
                 if (ok) ok = end_stands(t[0], t[1], t[4]) && end_stands(t[2], t[3], t[4]);
-            if (ok) sd.ends_checked = true;
+            if (ok) sd.takes.clear();
             else ++sd.ends_failed;
         }
         if (ok) return c;

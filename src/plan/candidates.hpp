@@ -303,9 +303,11 @@ private:
         bool has = false;
         bool bar_checked = false;  // best's bar already tested against the model
         int blocked = 0;           // bars of this seed found blocked so far
-        bool ends_checked = false; // a pillar stands under the ends of every span taken on the way to best
         int ends_failed = 0;       // bests of this seed with a span whose end could not stand
-        std::vector<std::array<double, 5>> takes;  // spans taken without asking their ends: x0, y0, x1, y1, z
+        // Spans taken on the way to best without asking whether a pillar
+        // stands under their ends (x0, y0, x1, y1, z); none: asked, or
+        // asked along the way.
+        std::vector<std::array<double, 5>> takes;
         Candidate best;
     };
     using Key = BarKey;
