@@ -223,7 +223,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     overhang::SupportPoints points;
     plan::Scaffold scaffold;
     toolpath::SupportPaths paths;
-    std::vector<plan::Bridge> forbidden;
+    plan::Forbidden forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
     plan::BraceAnswers brace_answers;  // the helper pillars dropped, asked again by the next round
@@ -241,7 +241,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     for (int round = 0;; ++round) {
         if (progress && round == 0) progress->say("planning {} support points", detected.points.size());
         else if (progress)
-            progress->say("planning again without {} bars (plan {} of at most {})", forbidden.size(), round + 1, kBarRounds + 1);
+            progress->say("planning again without {} bars (plan {} of at most {})", forbidden.bars.size(), round + 1, kBarRounds + 1);
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, obstacles, settings)
                                                       : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers,
@@ -262,7 +262,9 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // the edge of a column it does not rest on), or whose end stands on
         // a column that neither braces nor widening make stiff enough: plan
         // again without it.
-        const std::vector<std::size_t> unheld = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        const std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        std::vector<std::size_t> unheld;
+        for (const toolpath::UnheldBar& u : unheld_at) unheld.push_back(u.bar);
         if (!short_of_rule.empty()) log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
         if (log.should_log(spdlog::level::trace))
             for (const std::vector<std::size_t>* list :
@@ -293,7 +295,12 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             }
             break;
         }
-        for (std::size_t i : bad) forbidden.push_back(scaffold.bridges[i]);
+        for (std::size_t i : bad) forbidden.bars.push_back(scaffold.bridges[i]);
+        for (const toolpath::UnheldBar& u : unheld_at) {
+            forbidden.places.push_back({u.x, u.y, scaffold.bridges[u.bar].z});
+            log.trace("round {}: no bar of the next plans passes ({:.2f}, {:.2f}) near z {:.2f}", round, u.x, u.y,
+                      scaffold.bridges[u.bar].z);
+        }
         log.debug("{} bars not held as built or short of the rule: planning again without them ({:.0f} ms so far)",
                   bad.size(), 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     }
@@ -316,7 +323,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // taken out (a tie less), not left in. (Not asked again when that plan's
     // bars were checked and all held.)
     for (int k = 0; k < 3 && !bars_held; ++k) {
-        std::vector<std::size_t> bad = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        std::vector<std::size_t> bad;
+        for (const toolpath::UnheldBar& u : toolpath::unheld_bars(scaffold, paths, stack, settings)) bad.push_back(u.bar);
         if (log.should_log(spdlog::level::trace))
             for (std::size_t i : bad) {
                 const plan::Bridge& b = scaffold.bridges[i];

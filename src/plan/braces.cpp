@@ -319,7 +319,7 @@ double widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains
 }  // namespace
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-               const std::vector<Bridge>& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers) {
+               const Forbidden& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers) {
     const double target = target_stiffness(s);
     if (!(target > 0)) return 0;
     std::vector<PillarChain> chains = pillar_chains(sc);

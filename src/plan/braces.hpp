@@ -108,7 +108,7 @@ struct BraceAnswers {
 
 // `answers` (optional): kept by the caller over plans made again.
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
-               const Settings& settings, const std::vector<Bridge>& forbidden,
+               const Settings& settings, const Forbidden& forbidden,
                std::vector<std::size_t>* short_of_rule = nullptr, BraceAnswers* answers = nullptr);
 
 }  // namespace scaffold::plan

@@ -122,7 +122,7 @@ bool same_start(const std::vector<Active>& a, const std::vector<Active>& b) {
 // be built, remove what it carries, add its two ends, repeat.
 BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, const Settings& s, int threads = 0,
                         std::shared_ptr<ModelAnswers> answers = nullptr, BridgeReplay* replay = nullptr,
-                        const std::vector<const ModelView*>& helpers = {}, const std::vector<Bridge>& forbidden = {}) {
+                        const std::vector<const ModelView*>& helpers = {}, const Forbidden& forbidden = {}) {
     BridgePlan out;
     std::unique_ptr<BridgeSearch> owned;
     // Bounded work where the model is in the way everywhere.
@@ -142,7 +142,8 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
         owned = from.search->clone(m, helpers);
         // Its seeds were searched without the bars forbidden since (the
         // search leaves them out itself): those that may offer one, again.
-        for (const Bridge& f : forbidden) owned->stale_near(f.x0, f.y0, f.x1, f.y1);
+        for (const Bridge& f : forbidden.bars) owned->stale_near(f.x0, f.y0, f.x1, f.y1);
+        for (const Xyz& f : forbidden.places) owned->stale_near(f.x, f.y, f.x, f.y);  // kPlaceNear within its 2 mm
         out = from.out;
         rejects_left = from.rejects_left;
         log->offered.resize(from.offers);
@@ -378,11 +379,19 @@ bool along(const Bridge& f, const Bridge& b) {
     return overlap >= 0.5 * std::min(fl, bl);
 }
 
+bool passes_near(const Bridge& b, double x, double y, double r) {
+    const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((x - b.x0) * dx + (y - b.y0) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(b.x0 + t * dx - x, b.y0 + t * dy - y) < r;
+}
+
 }  // namespace
 
-bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, double layer_height) {
+bool near_forbidden(const Forbidden& forbidden, const Bridge& b, double layer_height) {
     auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
-    for (const Bridge& f : forbidden)
+    for (const Xyz& f : forbidden.places)
+        if (std::abs(f.z - b.z) < kPlaceLayers * layer_height + 1e-9 && passes_near(b, f.x, f.y, kPlaceNear)) return true;
+    for (const Bridge& f : forbidden.bars)
         if (std::abs(f.z - b.z) < 1.5 * layer_height &&
             ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
              (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0)) || along(f, b)))
@@ -391,7 +400,7 @@ bool near_forbidden(const std::vector<Bridge>& forbidden, const Bridge& b, doubl
 }
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
-                       const Settings& s, const std::vector<Bridge>& forbidden, std::shared_ptr<ModelAnswers> answers,
+                       const Settings& s, const Forbidden& forbidden, std::shared_ptr<ModelAnswers> answers,
                        const std::function<const Cavities&()>& shared_cavities, BridgeReplay* replay,
                        const std::vector<const Obstacles*>& helper_obstacles) {
     // Layers by z without purge lines: the layer above a height.

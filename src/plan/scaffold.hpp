@@ -52,6 +52,16 @@ struct Xyz {
     double x = 0, y = 0, z = 0;
 };
 
+// What the plans made again must not take (the pipeline's rounds, by
+// toolpath::unheld_bars): the bars whose lines a plan before failed to
+// hold, and the places beside which they failed (a column a bar passed
+// along without resting on it), each at that bar's z.
+struct Forbidden {
+    std::vector<Bridge> bars;
+    std::vector<Xyz> places;
+    bool empty() const { return bars.empty() && places.empty(); }
+};
+
 struct Scaffold {
     std::vector<Column> columns;
     std::vector<Bridge> bridges;

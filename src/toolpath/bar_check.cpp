@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include "layers/crossing.hpp"
 #include "layers/raster.hpp"
@@ -31,11 +33,45 @@ bool every_held(const std::vector<layers::PieceSample>& p) {
     return std::all_of(p.begin(), p.end(), [](const layers::PieceSample& q) { return q.held; });
 }
 
+// Where a line that is not held meets what fails it: the footprint cell
+// nearest the middle part of its first unheld run (a column it passes
+// beside; its held ends rest on their own columns, so the run's first and
+// last kEndsOff are not asked), or the run's middle when no footprint lies
+// within kBesideAt of it (a span too long).
+constexpr double kEndsOff = 1.0, kBesideAt = 2.0;
+Point what_fails(const std::vector<layers::PieceSample>& p, const layers::BitGrid& footprint) {
+    std::size_t i = 0;
+    while (i < p.size() && p[i].held) ++i;
+    if (i == p.size()) return p.empty() ? Point{} : Point{p.front().x, p.front().y};
+    std::size_t j = i;
+    while (j + 1 < p.size() && !p[j + 1].held) ++j;
+    const Point middle{(p[i].x + p[j].x) / 2, (p[i].y + p[j].y) / 2};
+    std::size_t a = i, b = j;
+    while (a < j && p[a].s - p[i].s < kEndsOff) ++a;
+    while (b > a && p[j].s - p[b].s < kEndsOff) --b;
+    if (a > b) return middle;
+    const double x0 = std::min(p[a].x, p[b].x) - kBesideAt, x1 = std::max(p[a].x, p[b].x) + kBesideAt;
+    const double y0 = std::min(p[a].y, p[b].y) - kBesideAt, y1 = std::max(p[a].y, p[b].y) + kBesideAt;
+    const double dx = p[b].x - p[a].x, dy = p[b].y - p[a].y, l2 = dx * dx + dy * dy;
+    double best = kBesideAt;
+    Point out = middle;
+    for (int row = std::max(0, footprint.row(y0)); row <= std::min(footprint.height() - 1, footprint.row(y1)); ++row)
+        for (int col = std::max(0, footprint.col(x0)); col <= std::min(footprint.width() - 1, footprint.col(x1)); ++col) {
+            if (!footprint.get(col, row)) continue;
+            const double cx = footprint.cx(col), cy = footprint.cy(row);
+            const double t = l2 > 0 ? std::clamp(((cx - p[a].x) * dx + (cy - p[a].y) * dy) / l2, 0.0, 1.0) : 0.0;
+            const double d = std::hypot(p[a].x + t * dx - cx, p[a].y + t * dy - cy);
+            if (d < best) best = d, out = {cx, cy};
+        }
+    return out;
+}
+
 // Whether the line a -> b on a layer is held by `beads` beneath it: rule
 // (a) with the holes they enclose, (b), then (c) near a contact tip (support
 // beneath, under the layer's own model `here`), in the validator's order.
 bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, const std::vector<Bead>& here,
-               double reach, double cell, double bridge_limit, double point_radius, std::vector<layers::PieceSample>& p) {
+               double reach, double cell, double bridge_limit, double point_radius, std::vector<layers::PieceSample>& p,
+               Point* where = nullptr) {
     // On the validator's lattice (multiples of the cell from the origin, as
     // make_grid lays it): a bar grazing a loop is judged cell for cell alike.
     const double x0 = std::floor((std::min(a.x, b.x) - kMargin) / cell) * cell, x1 = std::max(a.x, b.x) + kMargin;
@@ -85,7 +121,16 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
         firm = every_held(grown);
     }
     if (firm) layers::hold_runs(p, footprint, bridge_limit);  // else (b) holds nothing here
-    if (every_held(p) || !any_tip || here.empty()) return every_held(p);
+    // Left unheld (for where the bar fails): what neither this nor the grown
+    // walk that failed holds.
+    auto fail = [&] {
+        if (!firm)
+            for (std::size_t i = 0; i < p.size(); ++i) p[i].held = p[i].held || grown[i].held;
+        if (where) *where = what_fails(p, footprint);
+        return false;
+    };
+    if (every_held(p)) return true;
+    if (!any_tip || here.empty()) return fail();
     // Rule (c): the model of this layer within a cell of support beneath
     // rests on a tip, which holds what lies within the point radius of it.
     layers::BitGrid model = footprint;
@@ -93,11 +138,11 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     for (const Bead& d : here)
         if (!outside(d)) model.draw_segment(d.x0, d.y0, d.x1, d.y1, d.width);
     tips &= model.dilated(cell);
-    if (!tips.any()) return false;
+    if (!tips.any()) return fail();
     const layers::BitGrid tip_reach = tips.dilated(point_radius);
     for (layers::PieceSample& q : p)
         if (!q.held) q.held = tip_reach.get(tip_reach.col(q.x), tip_reach.row(q.y));
-    return every_held(p);
+    return every_held(p) || fail();
 }
 
 // What lies beneath layer `l` as METHOD and the validator take it: the
@@ -139,15 +184,15 @@ bool segment_held(const Point& a, const Point& b, int layer, const std::vector<L
                      settings.marked_bridge_limit, settings.point_radius, samples);
 }
 
-std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
-                                     const layers::LayerStack& stack, const Settings& settings) {
-    std::vector<std::size_t> out;
+std::vector<UnheldBar> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
+                                   const layers::LayerStack& stack, const Settings& settings) {
+    std::vector<UnheldBar> out;
     if (scaffold.bridges.empty()) return out;
     std::vector<Bead> beads, here;
     std::vector<layers::PieceSample> samples;
     for (std::size_t bi = 0; bi < scaffold.bridges.size(); ++bi) {
         const plan::Bridge& br = scaffold.bridges[bi];
-        bool bad = false;
+        std::optional<UnheldBar> bad;
         for (const LayerPaths& lp : paths.layers) {
             if (lp.bond()) continue;  // loops only, under a column's first layer
             const double z = stack.layers[lp.layer].z;
@@ -155,14 +200,14 @@ std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const Suppo
             gather_beneath(lp.layer, paths.layers, stack, settings, beads, here);
             const double reach = reach_on(stack.layers[lp.layer], settings);
             for (const std::vector<Point>& line : bar_lines(br, settings.support_width, settings.pillar_radius))
-                if (!line_held(line.front(), line.back(), beads, here, reach, settings.resolution,
-                               settings.marked_bridge_limit, settings.point_radius, samples)) {
-                    bad = true;
+                if (Point at; !line_held(line.front(), line.back(), beads, here, reach, settings.resolution,
+                                         settings.marked_bridge_limit, settings.point_radius, samples, &at)) {
+                    bad = UnheldBar{bi, at.x, at.y};
                     break;
                 }
             if (bad) break;
         }
-        if (bad) out.push_back(bi);
+        if (bad) out.push_back(*bad);
     }
     return out;
 }

@@ -24,8 +24,17 @@ namespace scaffold::toolpath {
 bool segment_held(const Point& a, const Point& b, int layer, const std::vector<LayerPaths>& printed,
                   const layers::LayerStack& stack, const Settings& settings);
 
-// Indices into scaffold.bridges of the bars some line of which is not held.
-std::vector<std::size_t> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
+// A bar some line of which is not held: its index into scaffold.bridges,
+// and the middle of that line's first stretch left unheld (where the bar
+// meets what fails it: a column it passes beside).
+struct UnheldBar {
+    std::size_t bar = 0;
+    double x = 0, y = 0;
+    friend bool operator==(const UnheldBar&, const UnheldBar&) = default;
+};
+
+// The bars some line of which is not held, in the order of scaffold.bridges.
+std::vector<UnheldBar> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
                                      const layers::LayerStack& stack, const Settings& settings);
 
 }  // namespace scaffold::toolpath

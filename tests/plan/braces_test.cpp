@@ -101,10 +101,11 @@ TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedWhereTheyStopStanding) {
     // less 3 mm reaches 37): 9 bars.
     plan::Scaffold again;
     again.columns = sc.columns;
-    EXPECT_EQ(plan::add_braces(again, st, obs, s, {sc.bridges[0]}), 9);
+    const plan::Forbidden failed{{sc.bridges[0]}, {}};
+    EXPECT_EQ(plan::add_braces(again, st, obs, s, failed), 9);
     EXPECT_EQ(again.columns.size(), 3u);
     for (const plan::Bridge& b : again.bridges) {
-        EXPECT_FALSE(plan::near_forbidden({sc.bridges[0]}, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
+        EXPECT_FALSE(plan::near_forbidden(failed, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
         EXPECT_NEAR(std::hypot(b.x1 - b.x0, b.y1 - b.y0), 8.45, 1e-6);
         EXPECT_TRUE(std::abs(b.z - 10) < 1e-6 || std::abs(b.z - 20) < 1e-6 || std::abs(b.z - 30) < 1e-6) << b.z;
     }

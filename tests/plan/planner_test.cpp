@@ -393,11 +393,11 @@ TEST(PlannerDeterminism, ThreadsAskingTheModelThroughCachesOfTheirOwnGiveTheSame
     for (const std::vector<const plan::Obstacles*>& helpers :
          {std::vector<const plan::Obstacles*>{another.get()}, std::vector<const plan::Obstacles*>{another.get(), third.get()}}) {
         plan::BridgeReplay alone, with;
-        std::vector<plan::Bridge> forbidden;
+        plan::Forbidden forbidden;
         const plan::Scaffold one = plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &alone);
         ASSERT_GT(one.bridges.size(), 10u);
         expect_same(one, plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &with, helpers));
-        forbidden.push_back(one.bridges[one.bridges.size() / 2]);
+        forbidden.bars.push_back(one.bridges[one.bridges.size() / 2]);
         const plan::Scaffold again = plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &alone);
         expect_same(again, plan::plan_scaffold(pts, st, obs, s, forbidden, nullptr, nullptr, &with, helpers));
         EXPECT_GT(with.offers_replayed, 0);
@@ -541,7 +541,7 @@ TEST(PlannerForbidden, NeitherTheSameBarNorOneAlongItsLine) {
         b.x0 = x0, b.y0 = y0, b.x1 = x1, b.y1 = y1, b.z = z;
         return b;
     };
-    const std::vector<plan::Bridge> failed{bar(114.05, 108.65, 131.55, 108.65, 6.6)};
+    const plan::Forbidden failed{{bar(114.05, 108.65, 131.55, 108.65, 6.6)}, {}};
     EXPECT_TRUE(plan::near_forbidden(failed, bar(114.5, 108.9, 131.2, 108.2, 6.6), 0.2));   // ends within 1 mm
     EXPECT_TRUE(plan::near_forbidden(failed, bar(131.55, 108.65, 114.05, 108.65, 6.8), 0.2));  // reversed, a layer up
     for (const plan::Bridge& b : {bar(115.35, 108.65, 131.55, 108.65, 6.6), bar(114.05, 108.65, 130.35, 108.65, 6.6),
@@ -553,6 +553,27 @@ TEST(PlannerForbidden, NeitherTheSameBarNorOneAlongItsLine) {
     EXPECT_FALSE(plan::near_forbidden(failed, bar(116.0, 108.65, 131.0, 111.30, 6.6), 0.2));
     EXPECT_FALSE(plan::near_forbidden(failed, bar(125.55, 108.65, 143.55, 108.65, 6.6), 0.2));
     EXPECT_FALSE(plan::near_forbidden(failed, bar(115.35, 108.65, 131.55, 108.65, 7.2), 0.2));
+}
+
+// A place a bar failed beside (bunny, z 6.4: a line at x 15.16 passed the
+// loop of a column at (13.95, 13.95), its edge 14.48): no bar within 1 mm of
+// it, within three layers of that bar; one further off, or higher, may.
+TEST(PlannerForbidden, NoBarPassesNearAPlaceABarFailedBeside) {
+    auto bar = [](double x0, double y0, double x1, double y1, double z) {
+        plan::Bridge b;
+        b.x0 = x0, b.y0 = y0, b.x1 = x1, b.y1 = y1, b.z = z;
+        return b;
+    };
+    const plan::Forbidden failed{{}, {{14.55, 14.35, 6.4}}};
+    // 0.95 mm off at z 6.4; 0.3 mm off three layers up (6.8: the bunny's
+    // next plan); across it at 6.0; ending 0.6 mm short of it.
+    for (const plan::Bridge& b : {bar(15.50, 12.0, 15.50, 18.0, 6.4), bar(14.25, 10.0, 14.25, 20.0, 7.0),
+                                  bar(10.0, 10.0, 20.0, 20.0, 5.8), bar(14.55, 14.95, 14.55, 20.0, 6.4)})
+        EXPECT_TRUE(plan::near_forbidden(failed, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
+    // 1.05 mm off; four layers up (7.2) or down (5.6); ending 1.1 mm short.
+    for (const plan::Bridge& b : {bar(15.60, 12.0, 15.60, 18.0, 6.4), bar(14.25, 10.0, 14.25, 20.0, 7.2),
+                                  bar(14.25, 10.0, 14.25, 20.0, 5.6), bar(14.55, 15.45, 14.55, 20.0, 6.4)})
+        EXPECT_FALSE(plan::near_forbidden(failed, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
 }
 
 // The lowest bar whose connector meets METHOD's Standing rule as the

@@ -37,17 +37,20 @@ TEST(BridgeReplay, APlanMadeAgainWithoutMoreBarsIsTheOneSearchedFromTheStart) {
             pts.points.push_back({20.0 + 4 * i, 20.0 + 4 * j, 0.2 * layer, layer});
         }
     plan::BridgeReplay replay;
-    std::vector<plan::Bridge> forbidden;
+    plan::Forbidden forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();
     plan::Scaffold resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
     // Enough bars that the middle one is offered after the first kept state
     // past the start (8 offers) and well before the last.
     ASSERT_GE(resumed.bridges.size(), 20u);
     EXPECT_EQ(replay.offers_replayed, 0);
-    // Two rounds, each forbidding the middle bar of the plan before: a plan
-    // resumed past where it was first offered would keep it.
-    for (int round = 0; round < 2; ++round) {
-        forbidden.push_back(resumed.bridges[resumed.bridges.size() / 2]);
+    // Three rounds, each forbidding the middle bar of the plan before (the
+    // third, the place at its middle instead): a plan resumed past where it
+    // was first offered would keep it.
+    for (int round = 0; round < 3; ++round) {
+        const plan::Bridge& middle = resumed.bridges[resumed.bridges.size() / 2];
+        if (round < 2) forbidden.bars.push_back(middle);
+        else forbidden.places.push_back({(middle.x0 + middle.x1) / 2, (middle.y0 + middle.y1) / 2, middle.z});
         const plan::Scaffold fresh = plan::plan_scaffold(pts, st, obs, s, forbidden);
         resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
         EXPECT_EQ(geometry(resumed), geometry(fresh)) << "round " << round;
@@ -98,13 +101,16 @@ TEST(BridgeReplay, SeedsSearchedBeforeABarWasForbiddenAreSearchedAgain) {
         pts.points.push_back({10.0 + 0.25 * next(240), 10.0 + 0.25 * next(240), 0.2 * layer, layer});
     }
     plan::BridgeReplay replay;
-    std::vector<plan::Bridge> forbidden;
+    plan::Forbidden forbidden;
     const auto answers = std::make_shared<plan::ModelAnswers>();
     plan::Scaffold resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
     ASSERT_GE(resumed.bridges.size(), 12u);
     for (int round = 0; round < 4; ++round) {
-        // Two bars of the later half of the plan before.
-        for (std::size_t k = 2; k <= 3; ++k) forbidden.push_back(resumed.bridges[k * resumed.bridges.size() / 4]);
+        // Two bars of the later half of the plan before, and the place at
+        // the first one's end.
+        for (std::size_t k = 2; k <= 3; ++k) forbidden.bars.push_back(resumed.bridges[k * resumed.bridges.size() / 4]);
+        const plan::Bridge& b = forbidden.bars[forbidden.bars.size() - 2];
+        forbidden.places.push_back({b.x1, b.y1, b.z});
         const plan::Scaffold fresh = plan::plan_scaffold(pts, st, obs, s, forbidden);
         resumed = plan::plan_scaffold(pts, st, obs, s, forbidden, answers, nullptr, &replay);
         EXPECT_EQ(geometry(resumed), geometry(fresh)) << "round " << round;

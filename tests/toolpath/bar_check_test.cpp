@@ -4,6 +4,8 @@
 // column it does not rest on leaves that column along its edge.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "support/stacks.hpp"
 #include "toolpath/bar_check.hpp"
 #include "toolpath/support_paths.hpp"
@@ -16,7 +18,7 @@ namespace {
 // to (30, 20), on loops of outer radius 1 at its ends on layers 17-21; with
 // `beside`, a loop of outer radius 2.5 on layers 17-19 whose edge passes
 // 0.25 mm from the bar's near line (within rule (a)'s reach, 0.336 mm).
-std::vector<std::size_t> unheld(bool beside, double wall_gap = 0) {
+std::vector<toolpath::UnheldBar> failed(bool beside, double wall_gap = 0) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
     plan::Scaffold sc;
@@ -47,11 +49,35 @@ std::vector<std::size_t> unheld(bool beside, double wall_gap = 0) {
     return toolpath::unheld_bars(sc, paths, st, s);
 }
 
+std::vector<std::size_t> unheld(bool beside, double wall_gap = 0) {
+    std::vector<std::size_t> out;
+    for (const toolpath::UnheldBar& u : failed(beside, wall_gap)) out.push_back(u.bar);
+    return out;
+}
+
 }  // namespace
 
 TEST(BarCheck, BarAcrossTwoPillarTopsIsHeld) { EXPECT_TRUE(unheld(false).empty()); }
 
 TEST(BarCheck, BarAlongTheFlankOfAColumnIsNotHeld) { EXPECT_EQ(unheld(true), std::vector<std::size_t>{0}); }
+
+// Where a bar fails (the place the plans made again keep bars away from):
+// on what it passes beside, not on its own pillar tops nor over its span's
+// middle. The column's loop: centre (25, 22.975), outer radius 2.5; the
+// wall's bead: y 21.45 +- 0.225, x 24 to 28.5.
+TEST(BarCheck, WhereABarFailsIsWhatItPassesBeside) {
+    const auto f = failed(true);
+    ASSERT_EQ(f.size(), 1u);
+    const double r = std::hypot(f[0].x - 25, f[0].y - 22.975);
+    EXPECT_GT(r, 2.5 - Settings{}.support_width - 0.1) << f[0].x << ", " << f[0].y;
+    EXPECT_LT(r, 2.5 + 0.1) << f[0].x << ", " << f[0].y;
+    EXPECT_LT(f[0].y, 22.0);  // the near side of it
+    const auto w = failed(false, 1.0);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NEAR(w[0].y, 21.45, 0.225 + 0.1);
+    EXPECT_GT(w[0].x, 24 - 0.1);
+    EXPECT_LT(w[0].x, 28.5 + 0.1);
+}
 
 // METHOD's crossing test from a held end: the bar leaves the bead across
 // it at x 23 (held by rule (a) to about 23.56: its edge 23.225 plus the
