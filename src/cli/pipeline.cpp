@@ -11,6 +11,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include "check/printability.hpp"
@@ -187,15 +188,33 @@ gcode::OutputFormat output_format(const std::string& name) {
 class SharedCavities {
 public:
     explicit SharedCavities(const layers::LayerStack& stack) : stack_(stack) {}
+    SharedCavities(const SharedCavities&) = delete;
+    SharedCavities& operator=(const SharedCavities&) = delete;
+    ~SharedCavities() {
+        if (early_.joinable()) early_.join();
+    }
     const plan::Cavities& get(const plan::Obstacles& obstacles) {
         std::call_once(once_, [&] { cavities_.emplace(stack_, obstacles); });
         return *cavities_;
+    }
+    // Mapped on a thread of its own while the plan begins (the bridge
+    // search's first bar asks for them; until then the second core is
+    // mostly idle); get() waits for it. `obstacles` must outlive this.
+    void start(const plan::Obstacles& obstacles) {
+        early_ = std::thread([this, &obstacles] {
+            try {
+                get(obstacles);
+            } catch (...) {
+                // Not mapped: the plan's own get() maps them again and throws there.
+            }
+        });
     }
 
 private:
     const layers::LayerStack& stack_;
     std::once_flag once_;
     std::optional<plan::Cavities> cavities_;
+    std::thread early_;
 };
 
 // One group's plan (the whole plate's when it is one group), its points
@@ -356,6 +375,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, kCopyWindow);
     const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads));
     SharedCavities cavities(first_copy);
+    if (settings.method == Method::Scaffold && plan::worker_count(2, threads) > 1) cavities.start(obstacles);
     log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
     progress.say("planning one of {} copies", n);
     GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress,
@@ -421,6 +441,8 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings));
     SharedCavities cavities(stack);
+    if (settings.method == Method::Scaffold && !groups.empty() && plan::worker_count(2, req.threads) > 1)
+        cavities.start(*obstacles);
     if (groups.size() <= 1)
         return plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress,
                           plan::worker_count(plan::kMaxPlanThreads, req.threads));
