@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <future>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -433,10 +434,17 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
 
 // The plate planned whole: points no bar, brace or column can join in
 // groups of their own, on the request's threads.
+// The model as the planner asks it (plan::Obstacles).
+std::unique_ptr<const plan::Obstacles> obstacles_of(const Request& req, const layers::LayerStack& stack,
+                                                    const Settings& settings) {
+    return std::make_unique<const plan::Obstacles>(stack, settings, plan::worker_count(stack.layers.size(), req.threads));
+}
+
+// `built`: the stack's obstacles when already built (else built here).
 GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
-                        const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress) {
-    const auto obstacles =
-        std::make_unique<const plan::Obstacles>(stack, settings, plan::worker_count(stack.layers.size(), req.threads));
+                        const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress,
+                        std::unique_ptr<const plan::Obstacles> built) {
+    const std::unique_ptr<const plan::Obstacles> obstacles = built ? std::move(built) : obstacles_of(req, stack, settings);
     const std::vector<plan::PointGroup> groups =
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings));
@@ -581,6 +589,12 @@ Outcome run(const Request& req, spdlog::logger& log) {
         copies->prototype = layers::move_bounds(copies->prototype, frame, true);
     }
     time.lap("copies");
+    // The model's obstacles built while its overhangs are found (they ask
+    // only the layers): a plate of copies builds its own, of the plate as
+    // its first copy sees it.
+    std::future<std::unique_ptr<const plan::Obstacles>> early_obstacles;
+    if (!copies && settings.method != Method::None && plan::worker_count(2, req.threads) > 1)
+        early_obstacles = std::async(std::launch::async, [&] { return obstacles_of(req, stack, settings); });
     progress.say("finding overhangs");
     overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
     overhang::SupportPoints points = overhang::place_points(overhangs, copies ? first_copy : stack, settings);
@@ -610,7 +624,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
         }
     }
     first_copy = {};
-    GroupPlanned planned = copied ? std::move(*copied) : plan_plate(req, points, overhangs, stack, settings, log, progress);
+    GroupPlanned planned = copied ? std::move(*copied)
+                                  : plan_plate(req, points, overhangs, stack, settings, log, progress,
+                                               early_obstacles.valid() ? early_obstacles.get() : nullptr);
     copied.reset();
     // Back onto the bed.
     plan::GroupPlan placed = plan::moved({std::move(planned.points), std::move(planned.scaffold)}, frame.dx(), frame.dy());
