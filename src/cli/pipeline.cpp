@@ -7,10 +7,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <numbers>
-#include <future>
 #include <optional>
 #include <thread>
 #include <vector>
@@ -218,6 +218,13 @@ private:
     std::thread early_;
 };
 
+// The indices into the scaffold's bridges of the bars not held.
+std::vector<std::size_t> bar_indices(const std::vector<toolpath::UnheldBar>& unheld) {
+    std::vector<std::size_t> out;
+    for (const toolpath::UnheldBar& u : unheld) out.push_back(u.bar);
+    return out;
+}
+
 // One group's plan (the whole plate's when it is one group), its points
 // (the group's, then those added to cover what tips leave unheld) and paths.
 struct GroupPlanned {
@@ -283,8 +290,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // a column that neither braces nor widening make stiff enough: plan
         // again without it.
         const std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
-        std::vector<std::size_t> unheld;
-        for (const toolpath::UnheldBar& u : unheld_at) unheld.push_back(u.bar);
+        const std::vector<std::size_t> unheld = bar_indices(unheld_at);
         if (!short_of_rule.empty()) log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
         if (log.should_log(spdlog::level::trace))
             for (const std::vector<std::size_t>* list :
@@ -343,8 +349,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // taken out (a tie less), not left in. (Not asked again when that plan's
     // bars were checked and all held.)
     for (int k = 0; k < 3 && !bars_held; ++k) {
-        std::vector<std::size_t> bad;
-        for (const toolpath::UnheldBar& u : toolpath::unheld_bars(scaffold, paths, stack, settings)) bad.push_back(u.bar);
+        std::vector<std::size_t> bad = bar_indices(toolpath::unheld_bars(scaffold, paths, stack, settings));
         if (log.should_log(spdlog::level::trace))
             for (std::size_t i : bad) {
                 const plan::Bridge& b = scaffold.bridges[i];
@@ -432,15 +437,15 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     return out;
 }
 
-// The plate planned whole: points no bar, brace or column can join in
-// groups of their own, on the request's threads.
 // The model as the planner asks it (plan::Obstacles).
 std::unique_ptr<const plan::Obstacles> obstacles_of(const Request& req, const layers::LayerStack& stack,
                                                     const Settings& settings) {
     return std::make_unique<const plan::Obstacles>(stack, settings, plan::worker_count(stack.layers.size(), req.threads));
 }
 
-// `built`: the stack's obstacles when already built (else built here).
+// The plate planned whole: points no bar, brace or column can join in
+// groups of their own, on the request's threads. `built`: the stack's
+// obstacles when already built (else built here).
 GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress,
                         std::unique_ptr<const plan::Obstacles> built) {

@@ -24,7 +24,15 @@ struct Segment {
     std::uint32_t move = 0;    // index into Program::moves
 };
 
-// Distance from (px, py) to the segment's centre line.
+// Distance from (px, py) to the segment (x0, y0) - (x1, y1).
+inline double segment_distance(double px, double py, double x0, double y0, double x1, double y1) {
+    const double dx = x1 - x0, dy = y1 - y0, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(px - (x0 + dx * t), py - (y0 + dy * t));
+}
+
+// Distance from (px, py) to the segment's centre line (its coordinates'
+// differences taken in float, as they are stored).
 inline double segment_distance(double px, double py, const Segment& s) {
     const double dx = s.x1 - s.x0, dy = s.y1 - s.y0, l2 = dx * dx + dy * dy;
     const double t = l2 > 0 ? std::clamp(((px - s.x0) * dx + (py - s.y0) * dy) / l2, 0.0, 1.0) : 0.0;

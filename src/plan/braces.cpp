@@ -1,8 +1,8 @@
 #include "plan/braces.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <limits>

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <utility>
 
+#include "layers/layer_stack.hpp"
 #include "plan/cavities.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
@@ -380,9 +381,7 @@ bool along(const Bridge& f, const Bridge& b) {
 }
 
 bool passes_near(const Bridge& b, double x, double y, double r) {
-    const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
-    const double t = l2 > 0 ? std::clamp(((x - b.x0) * dx + (y - b.y0) * dy) / l2, 0.0, 1.0) : 0.0;
-    return std::hypot(b.x0 + t * dx - x, b.y0 + t * dy - y) < r;
+    return layers::segment_distance(x, y, b.x0, b.y0, b.x1, b.y1) < r;
 }
 
 }  // namespace

@@ -52,15 +52,13 @@ Point what_fails(const std::vector<layers::PieceSample>& p, const layers::BitGri
     if (a > b) return middle;
     const double x0 = std::min(p[a].x, p[b].x) - kBesideAt, x1 = std::max(p[a].x, p[b].x) + kBesideAt;
     const double y0 = std::min(p[a].y, p[b].y) - kBesideAt, y1 = std::max(p[a].y, p[b].y) + kBesideAt;
-    const double dx = p[b].x - p[a].x, dy = p[b].y - p[a].y, l2 = dx * dx + dy * dy;
     double best = kBesideAt;
     Point out = middle;
     for (int row = std::max(0, footprint.row(y0)); row <= std::min(footprint.height() - 1, footprint.row(y1)); ++row)
         for (int col = std::max(0, footprint.col(x0)); col <= std::min(footprint.width() - 1, footprint.col(x1)); ++col) {
             if (!footprint.get(col, row)) continue;
             const double cx = footprint.cx(col), cy = footprint.cy(row);
-            const double t = l2 > 0 ? std::clamp(((cx - p[a].x) * dx + (cy - p[a].y) * dy) / l2, 0.0, 1.0) : 0.0;
-            const double d = std::hypot(p[a].x + t * dx - cx, p[a].y + t * dy - cy);
+            const double d = layers::segment_distance(cx, cy, p[a].x, p[a].y, p[b].x, p[b].y);
             if (d < best) best = d, out = {cx, cy};
         }
     return out;
