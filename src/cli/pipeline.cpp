@@ -218,6 +218,8 @@ private:
     std::thread early_;
 };
 
+double ms_between(Clock::time_point a, Clock::time_point b) { return 1000 * std::chrono::duration<double>(b - a).count(); }
+
 // The indices into the scaffold's bridges of the bars not held.
 std::vector<std::size_t> bar_indices(const std::vector<toolpath::UnheldBar>& unheld) {
     std::vector<std::size_t> out;
@@ -269,6 +271,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         if (progress && round == 0) progress->say("planning {} support points", detected.points.size());
         else if (progress)
             progress->say("planning again without {} bars (plan {} of at most {})", forbidden.bars.size(), round + 1, kBarRounds + 1);
+        const Clock::time_point r0 = Clock::now();
         points = detected;
         scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, obstacles, settings)
                                                       : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers,
@@ -276,21 +279,27 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // A tip set off its point (a slot, a wall) holds less of the sheet than
         // the point stood for (METHOD's rule (c)): what it leaves gets points and
         // pillars of its own, a few rounds at most.
+        const Clock::time_point r1 = Clock::now();
         if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, obstacles, settings,
                                                settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
             log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
         // METHOD's Standing rule: columns too weak for it (no room to widen)
         // tied to two neighbours in triangles.
+        const Clock::time_point r2 = Clock::now();
         std::vector<std::size_t> short_of_rule;
         if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden, &short_of_rule, &brace_answers))
             log.debug("{} bars brace weak columns", n);
+        const Clock::time_point r3 = Clock::now();
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
+        const Clock::time_point r4 = Clock::now();
         // A bar whose line rule (b) does not hold as built (it passes along
         // the edge of a column it does not rest on), or whose end stands on
         // a column that neither braces nor widening make stiff enough: plan
         // again without it.
         const std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
         const std::vector<std::size_t> unheld = bar_indices(unheld_at);
+        log.debug("plan {}: bars {:.1f} ms, cover {:.1f}, braces {:.1f}, paths {:.1f}, check {:.1f}", round + 1,
+                  ms_between(r0, r1), ms_between(r1, r2), ms_between(r2, r3), ms_between(r3, r4), ms_between(r4, Clock::now()));
         if (!short_of_rule.empty()) log.debug("{} bars stand on a column short of --min-stiffness", short_of_rule.size());
         if (log.should_log(spdlog::level::trace))
             for (const std::vector<std::size_t>* list :
@@ -328,7 +337,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                       scaffold.bridges[u.bar].z);
         }
         log.debug("{} bars not held as built or short of the rule: planning again without them ({:.0f} ms so far)",
-                  bad.size(), 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
+                  bad.size(), ms_between(t0, Clock::now()));
     }
     if (replay.offers_replayed > 0)
         log.debug("plans made again resumed their bridge search: {} offers not made again", replay.offers_replayed);
@@ -382,7 +391,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads));
     SharedCavities cavities(first_copy);
     if (settings.method == Method::Scaffold && plan::worker_count(2, threads) > 1) cavities.start(obstacles);
-    log.debug("the plate as the first copy sees it: {:.0f} ms", 1000 * std::chrono::duration<double>(Clock::now() - t0).count());
+    log.debug("the plate as the first copy sees it: {:.0f} ms", ms_between(t0, Clock::now()));
     progress.say("planning one of {} copies", n);
     GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress,
                                   plan::worker_count(plan::kMaxPlanThreads, threads));
@@ -408,7 +417,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
         if (!inside(inner, b.x0, b.y0) || !inside(inner, b.x1, b.y1)) return past_the_window();
     const std::size_t count = detected.points.size();
     log.debug("{} exact copies: one planned ({} support points, {:.0f} ms), its plan moved to the others", n, count,
-              1000 * std::chrono::duration<double>(Clock::now() - t0).count());
+              ms_between(t0, Clock::now()));
     std::vector<plan::PointGroup> groups(n);
     std::vector<plan::GroupPlan> plans(n);
     overhang::SupportPoints input;
