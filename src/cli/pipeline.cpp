@@ -558,6 +558,17 @@ Outcome run(const Request& req, spdlog::logger& log) {
     bool big = program.text.size() > 10'000'000;
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
+    // Print-time change, by the validator's estimate; the written file is
+    // read back for it, so only when that is cheap.
+    // (Read back from the output: not from stdout, a device or a pipe.)
+    const bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
+                               program.text.size() < 50'000'000;
+    // Both read the moves alone: the estimate on a second thread while the
+    // layers are built.
+    const bool two_threads = plan::worker_count(2, req.threads) > 1;
+    std::future<double> estimated_before;
+    if (estimate_time && two_threads)
+        estimated_before = std::async(std::launch::async, [&program] { return check::estimate_print_time(program); });
     progress.say("reading layers");
     layers::LayerStack stack = layers::build_layers(program, settings);
     double model_mm = 0, own_support_mm = 0;
@@ -570,12 +581,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
         log.info("the file already holds {:.0f} mm of the slicer's own support or raft: scaffold adds only what is still "
                  "needed",
                  own_support_mm);
-    // Print-time change, by the validator's estimate; the written file is
-    // read back for it, so only when that is cheap.
-    // (Read back from the output: not from stdout, a device or a pipe.)
-    bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
-                         program.text.size() < 50'000'000;
-    double time_before = estimate_time ? check::estimate_print_time(program) : 0;
+    const double time_before = estimated_before.valid() ? estimated_before.get()
+                               : estimate_time          ? check::estimate_print_time(program)
+                                                        : 0;
     // Nothing below reads the moves (the splice re-lexes the lines) but
     // --check's comparison with the input: free them, the largest part of a
     // big file's memory.
@@ -680,8 +688,22 @@ Outcome run(const Request& req, spdlog::logger& log) {
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
     splice::update_times(program, std::move(block_times), edits);
     update_totals(program, spliced.filament_mm, settings.spool_diameter, edits);
-    if (req.output_text) *req.output_text = gcode::render_edited(program, std::move(edits));
-    else gcode::write_output(req.output, program, std::move(edits), format);
+    // A text file written: rendered once, its copy parsed for the estimate
+    // on a second thread while the file is written (two copies in memory:
+    // a small file's; a larger one is streamed out and read back).
+    std::future<double> estimated_after;
+    if (req.output_text) {
+        *req.output_text = gcode::render_edited(program, std::move(edits));
+    } else if (estimate_time && two_threads && program.text.size() < 10'000'000 &&
+               (format == gcode::OutputFormat::Ascii || (format == gcode::OutputFormat::SameAsInput && !program.binary))) {
+        const std::string text = gcode::render_edited(program, std::move(edits));
+        estimated_after = std::async(std::launch::async, [copy = text, &program]() mutable {
+            return check::estimate_print_time(gcode::parse(std::move(copy), program.path));
+        });
+        gcode::write_bytes(req.output, text);
+    } else {
+        gcode::write_output(req.output, program, std::move(edits), format);
+    }
     time.lap("write");
 
     std::string time_change;
@@ -689,8 +711,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     if (estimate_time) {
         progress.say("estimating the print time");
         double before = time_before;
-        double after = check::estimate_print_time(req.output_text ? gcode::parse(*req.output_text, program.path)
-                                                                  : gcode::read_file(req.output));
+        double after = estimated_after.valid() ? estimated_after.get()
+                       : check::estimate_print_time(req.output_text ? gcode::parse(*req.output_text, program.path)
+                                                                    : gcode::read_file(req.output));
         outcome.seconds_after = after;
         time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
                                   before > 0 ? 100 * (after - before) / before : 0.0);
