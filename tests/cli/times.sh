@@ -59,5 +59,21 @@ awk -v a="$e0" -v b="$e1" -v s="$support" 'BEGIN { d = b - a - s; exit !(d > -1 
   bad "last ;TIME_ELAPSED: $e0 -> $e1, support $support s"
 "$build/scaffold-check" --min-stiffness 0 "$tmp/cura.out.gcode" --original "$tmp/cura.gcode" > "$tmp/check2.txt" ||
   { bad "scaffold-check --original fails on the Cura output:"; cat "$tmp/check2.txt"; }
+
+# The print-time change scaffold reports is the validator's estimate of the
+# input and of the file written, whether the estimates run on a second
+# thread (the output parsed from memory while it is written) or not.
+# (The input fails the check: its overhangs are unheld.)
+"$build/scaffold-check" --min-stiffness 0 "$tmp/cura.gcode" > "$tmp/check_in.txt" || true
+want_before="$(sed -n 's/^  print time estimate: \([0-9.]*\) min$/\1/p' "$tmp/check_in.txt")"
+want_after="$(sed -n 's/^  print time estimate: \([0-9.]*\) min (original [0-9.]* min)$/\1/p' "$tmp/check2.txt")"
+for threads in 1 2; do
+  "$build/scaffold" --threads "$threads" "$tmp/cura.gcode" -o "$tmp/cura.t$threads.gcode" 2> "$tmp/log.txt"
+  cmp -s "$tmp/cura.t$threads.gcode" "$tmp/cura.out.gcode" || bad "--threads $threads writes another file"
+  said="$(sed -n 's/.*; print time \([0-9]*\) -> \([0-9]*\) min.*/\1 \2/p' "$tmp/log.txt")"
+  want="$(awk -v a="$want_before" -v b="$want_after" 'BEGIN { printf "%.0f %.0f", a, b }')"
+  [ -n "$want_before" ] && [ -n "$want_after" ] && [ "$said" = "$want" ] ||
+    bad "--threads $threads says print time '$said' min, the checker '$want' ($want_before, $want_after)"
+done
 [ "$fail" -eq 0 ] || exit 1
-echo "time lines: PrusaSlicer estimate and M73 ($n layers) and Cura ;TIME:/;TIME_ELAPSED: raised by the support's time; checker passes"
+echo "time lines: PrusaSlicer estimate and M73 ($n layers) and Cura ;TIME:/;TIME_ELAPSED: raised by the support's time; checker passes; the print time said is the checker's on 1 and 2 threads"
