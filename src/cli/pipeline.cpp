@@ -558,9 +558,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     bool big = program.text.size() > 10'000'000;
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
-    // Print-time change, by the validator's estimate; the written file is
-    // read back for it, so only when that is cheap.
-    // (Read back from the output: not from stdout, a device or a pipe.)
+    // Print-time change, by the validator's estimate of the output (read
+    // back or parsed from memory, below), so only when that is cheap; not
+    // for stdout, a device or a pipe.
     const bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
                                program.text.size() < 50'000'000;
     // Both read the moves alone: the estimate on a second thread while the
@@ -615,7 +615,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // only the layers): a plate of copies builds its own, of the plate as
     // its first copy sees it.
     std::future<std::unique_ptr<const plan::Obstacles>> early_obstacles;
-    if (!copies && settings.method != Method::None && plan::worker_count(2, req.threads) > 1)
+    if (!copies && settings.method != Method::None && two_threads)
         early_obstacles = std::async(std::launch::async, [&] { return obstacles_of(req, stack, settings); });
     progress.say("finding overhangs");
     overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
@@ -694,8 +694,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::future<double> estimated_after;
     if (req.output_text) {
         *req.output_text = gcode::render_edited(program, std::move(edits));
-    } else if (estimate_time && two_threads && program.text.size() < 10'000'000 &&
-               (format == gcode::OutputFormat::Ascii || (format == gcode::OutputFormat::SameAsInput && !program.binary))) {
+    } else if (estimate_time && two_threads && program.text.size() < 10'000'000 && gcode::text_output(program, format)) {
         const std::string text = gcode::render_edited(program, std::move(edits));
         estimated_after = std::async(std::launch::async, [copy = text, &program]() mutable {
             return check::estimate_print_time(gcode::parse(std::move(copy), program.path));

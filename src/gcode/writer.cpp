@@ -166,11 +166,15 @@ std::string render_edited(const Program& p, std::vector<Edit> edits) {
     return s;
 }
 
+bool text_output(const Program& program, OutputFormat format) {
+    return format == OutputFormat::Ascii || (format == OutputFormat::SameAsInput && !program.binary);
+}
+
 namespace {
 
 // Binary output, made in memory before any file is touched; nothing for text.
 std::optional<std::string> binary_output(const Program& p, std::vector<Edit>& edits, OutputFormat format) {
-    if (format == OutputFormat::Ascii || (format == OutputFormat::SameAsInput && !p.binary)) return std::nullopt;
+    if (text_output(p, format)) return std::nullopt;
     if (p.binary && edits.empty()) return std::string(std::string_view(p.binary->original));
     if (p.binary) return bgcode::encode_edited(p, std::move(edits));
     return bgcode::encode_ascii(render_edited(p, std::move(edits)), bgcode::Settings{});

@@ -29,6 +29,8 @@ bool write_edited(std::FILE* out, const Program& program, std::vector<Edit> edit
 std::string render_edited(const Program& program, std::vector<Edit> edits);
 
 enum class OutputFormat : std::uint8_t { SameAsInput, Ascii, Binary };
+// Whether write_output writes `program` in `format` as text (else as binary G-code).
+bool text_output(const Program& program, OutputFormat format);
 
 // Whether `path` is a device or a pipe (/dev/null, a FIFO; NUL on Windows):
 // written to as it is, never replaced, and nothing can be read back from it.

@@ -25,8 +25,9 @@ bool segment_held(const Point& a, const Point& b, int layer, const std::vector<L
                   const layers::LayerStack& stack, const Settings& settings);
 
 // A bar some line of which is not held: its index into scaffold.bridges,
-// and the middle of that line's first stretch left unheld (where the bar
-// meets what fails it: a column it passes beside).
+// and where that line meets what fails it: the footprint cell nearest the
+// middle of its first stretch left unheld (a column it passes beside), or
+// that stretch's middle when no footprint is near.
 struct UnheldBar {
     std::size_t bar = 0;
     double x = 0, y = 0;
@@ -35,6 +36,6 @@ struct UnheldBar {
 
 // The bars some line of which is not held, in the order of scaffold.bridges.
 std::vector<UnheldBar> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
-                                     const layers::LayerStack& stack, const Settings& settings);
+                                   const layers::LayerStack& stack, const Settings& settings);
 
 }  // namespace scaffold::toolpath
