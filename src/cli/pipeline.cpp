@@ -33,6 +33,7 @@
 #include "plan/groups.hpp"
 #include "plan/obstacles.hpp"
 #include "plan/pillars.hpp"
+#include "plan/props.hpp"
 #include "plan/planner.hpp"
 #include "splice/splice.hpp"
 #include "splice/times.hpp"
@@ -296,7 +297,30 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // the edge of a column it does not rest on), or whose end stands on
         // a column that neither braces nor widening make stiff enough: plan
         // again without it.
-        const std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
+        if (!unheld_at.empty()) {
+            // Rule (b): a bar that passes beside a column rests on a prop from
+            // it instead, where that holds it and fails no other bar.
+            plan::Scaffold propped = scaffold;
+            if (const int n = plan::prop_bars(propped, bar_indices(unheld_at), stack, obstacles, settings)) {
+                toolpath::SupportPaths propped_paths = toolpath::make_paths(propped, stack, settings, &obstacles);
+                std::vector<toolpath::UnheldBar> still = toolpath::unheld_bars(propped, propped_paths, stack, settings);
+                const std::vector<std::size_t> before = bar_indices(unheld_at), after = bar_indices(still);
+                const bool better = after.size() < before.size() && std::includes(before.begin(), before.end(), after.begin(), after.end());
+                log.debug("{} props under bars beside columns: {} of {} bars held{}", n, before.size() - after.size(),
+                          before.size(), better ? "" : ", not kept");
+                for (std::size_t i = scaffold.columns.size(); i < propped.columns.size(); ++i) {
+                    const plan::Column& c = propped.columns[i];
+                    log.trace("round {}: prop ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), radius {:.2f}", round,
+                              c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, c.radius);
+                }
+                if (better) {
+                    scaffold = std::move(propped);
+                    paths = std::move(propped_paths);
+                    unheld_at = std::move(still);
+                }
+            }
+        }
         const std::vector<std::size_t> unheld = bar_indices(unheld_at);
         log.debug("plan {}: bars {:.1f} ms, cover {:.1f}, braces {:.1f}, paths {:.1f}, check {:.1f}", round + 1,
                   ms_between(r0, r1), ms_between(r1, r2), ms_between(r2, r3), ms_between(r3, r4), ms_between(r4, Clock::now()));
@@ -335,6 +359,17 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             forbidden.places.push_back({u.x, u.y, scaffold.bridges[u.bar].z});
             log.trace("round {}: no bar of the next plans passes ({:.2f}, {:.2f}) near z {:.2f}", round, u.x, u.y,
                       scaffold.bridges[u.bar].z);
+            if (!log.should_log(spdlog::level::trace)) continue;
+            const double bz = scaffold.bridges[u.bar].z;
+            for (const plan::Column& c : scaffold.columns) {
+                if (c.z0 > bz + 0.4 || c.z1 < bz) continue;
+                double cx, cy;
+                plan::column_centre_at(c, bz, cx, cy);
+                if (std::hypot(cx - u.x, cy - u.y) > 3) continue;
+                log.trace("round {}:   beside column ({:.2f}, {:.2f}, z {:.2f}) -> ({:.2f}, {:.2f}, z {:.2f}), base {}, top {}, "
+                          "point {}", round, c.x0, c.y0, c.z0, c.x1, c.y1, c.z1, static_cast<int>(c.base),
+                          static_cast<int>(c.top), c.point);
+            }
         }
         log.debug("{} bars not held as built or short of the rule: planning again without them ({:.0f} ms so far)",
                   bad.size(), ms_between(t0, Clock::now()));
