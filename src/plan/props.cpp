@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <map>
 #include <tuple>
+#include <utility>
 
 #include "plan/candidates.hpp"
 #include "plan/pillars.hpp"
