@@ -302,10 +302,11 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             // Rule (b): a bar that passes beside a column rests on a prop from
             // it instead, where that holds it and fails no other bar.
             plan::Scaffold propped = scaffold;
-            if (const int n = plan::prop_bars(propped, bar_indices(unheld_at), stack, obstacles, settings)) {
+            const std::vector<std::size_t> before = bar_indices(unheld_at);
+            if (const int n = plan::prop_bars(propped, before, stack, obstacles, settings)) {
                 toolpath::SupportPaths propped_paths = toolpath::make_paths(propped, stack, settings, &obstacles);
                 std::vector<toolpath::UnheldBar> still = toolpath::unheld_bars(propped, propped_paths, stack, settings);
-                const std::vector<std::size_t> before = bar_indices(unheld_at), after = bar_indices(still);
+                const std::vector<std::size_t> after = bar_indices(still);
                 const bool better = after.size() < before.size() && std::includes(before.begin(), before.end(), after.begin(), after.end());
                 log.debug("{} props under bars beside columns: {} of {} bars held{}", n, before.size() - after.size(),
                           before.size(), better ? "" : ", not kept");
@@ -362,7 +363,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             if (!log.should_log(spdlog::level::trace)) continue;
             const double bz = scaffold.bridges[u.bar].z;
             for (const plan::Column& c : scaffold.columns) {
-                if (c.z0 > bz + 0.4 || c.z1 < bz) continue;
+                if (c.z0 > bz + plan::kBarThickness || c.z1 < bz) continue;
                 double cx, cy;
                 plan::column_centre_at(c, bz, cx, cy);
                 if (std::hypot(cx - u.x, cy - u.y) > 3) continue;

@@ -98,9 +98,9 @@ int prop_bars(Scaffold& sc, const std::vector<std::size_t>& bars, const layers::
     for (std::size_t i = 0; i < columns; ++i) tops.emplace(std::tuple{sc.columns[i].x1, sc.columns[i].y1, sc.columns[i].z1}, i);
     int added = 0;
     std::vector<Column> props;
-    for (const std::size_t b : bars)
+    for (const std::size_t b : bars) {
+        const Bridge& bar = sc.bridges[b];
         for (std::size_t i = 0; i < columns; ++i) {
-            const Bridge& bar = sc.bridges[b];
             if (passes_beside(sc.columns[i], bar, s) < 0) continue;
             std::vector<const Column*> chain{&sc.columns[i]};
             while (chain.size() < columns && chain.back()->base == Base::Column) {
@@ -117,6 +117,7 @@ int prop_bars(Scaffold& sc, const std::vector<std::size_t>& bars, const layers::
                 ++added;
             }
         }
+    }
     sc.columns.insert(sc.columns.end(), props.begin(), props.end());
     return added;
 }
