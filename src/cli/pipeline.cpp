@@ -12,6 +12,7 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
+#include <numeric>
 #include <thread>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "gcode/reader.hpp"
 #include "gcode/writer.hpp"
 #include "layers/copies.hpp"
+#include "layers/objects.hpp"
 #include "layers/frame.hpp"
 #include "layers/layer_stack.hpp"
 #include "overhang/dump.hpp"
@@ -57,6 +59,10 @@ constexpr int kBarRounds = 10;
 // points, braces' helper pillars within 12 mm of their columns.
 constexpr double kCopyWindow = 25.0;
 constexpr double kCopyReach = 10.0;
+// mm: a point is its object's within this of its footprint.
+constexpr double kPointObjectReach = 1.0;
+// Points: groups this large (a whole object's) each take a thread at once.
+constexpr std::size_t kHeavyGroup = 40;
 
 // Whether a column standing on the model stands on the first copy's beads
 // (within its radius and a millimetre of one on the layer it rests on).
@@ -488,16 +494,30 @@ std::unique_ptr<const plan::Obstacles> obstacles_of(const Request& req, const la
     return std::make_unique<const plan::Obstacles>(stack, settings, plan::worker_count(stack.layers.size(), req.threads));
 }
 
+// Each point's object on the plate (the frame's points looked up on the
+// bed), or nothing where the plate holds one object.
+std::vector<int> objects_of(const overhang::SupportPoints& points, const std::optional<layers::ObjectMap>& objects,
+                            const layers::Frame& frame) {
+    std::vector<int> out;
+    if (!objects || objects->count() < 2) return out;
+    for (const overhang::SupportPoint& p : points.points)
+        out.push_back(objects->at(p.x + frame.dx(), p.y + frame.dy(), kPointObjectReach));
+    return out;
+}
+
 // The plate planned whole: points no bar, brace or column can join in
-// groups of their own, on the request's threads. `built`: the stack's
-// obstacles when already built (else built here).
+// groups of their own, on the request's threads; and each object of the
+// plate (`object`: one per point, else empty) in groups of its own, where
+// the plans come out apart (plan::plans_apart): objects whose plans come
+// close are planned again as one. `built`: the stack's obstacles when
+// already built (else built here).
 GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress,
-                        std::unique_ptr<const plan::Obstacles> built) {
+                        std::unique_ptr<const plan::Obstacles> built, const std::vector<int>& object) {
     const std::unique_ptr<const plan::Obstacles> obstacles = built ? std::move(built) : obstacles_of(req, stack, settings);
-    const std::vector<plan::PointGroup> groups =
+    std::vector<plan::PointGroup> groups =
         detected.points.empty() ? std::vector<plan::PointGroup>{}
-                                : plan::point_groups(detected, overhangs, plan::group_reach(settings));
+                                : plan::point_groups(detected, overhangs, plan::group_reach(settings), object);
     SharedCavities cavities(stack);
     if (settings.method == Method::Scaffold && !groups.empty() && plan::worker_count(2, req.threads) > 1)
         cavities.start(*obstacles);
@@ -513,21 +533,75 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     // rasters, the first thread's the one already built.
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
     std::vector<plan::GroupPlan> plans(groups.size());
-    plan::for_each_group(
-        groups.size(), workers, [&](std::size_t g) { return groups[g].index.size(); },
-        [&](std::size_t g, int worker) {
-            const plan::Obstacles* obs = obstacles.get();
-            if (worker > 0) {
-                auto& mine = own[static_cast<std::size_t>(worker)];
-                if (!mine) mine = obstacles->another();
-                obs = mine.get();
+    std::vector<char> todo(groups.size(), 1);
+    for (;;) {
+        std::vector<std::size_t> list;
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            if (todo[g]) list.push_back(g);
+        // Groups of whole objects are worth a thread at once; a plate of
+        // many light groups only once they have taken a while.
+        std::size_t heavy = 0;
+        for (std::size_t g : list) heavy += groups[g].index.size() >= kHeavyGroup;
+        plan::for_each_group(
+            list.size(), plan::worker_count(list.size(), workers),
+            [&](std::size_t k) { return groups[list[k]].index.size(); },
+            [&](std::size_t k, int worker) {
+                const std::size_t g = list[k];
+                const plan::Obstacles* obs = obstacles.get();
+                if (worker > 0) {
+                    auto& mine = own[static_cast<std::size_t>(worker)];
+                    if (!mine) mine = obstacles->another();
+                    obs = mine.get();
+                }
+                GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
+                                               plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
+                                               cavities, log, nullptr);
+                plans[g] = {std::move(done.points), std::move(done.scaffold)};
+            },
+            heavy >= 2 ? 0.0 : req.second_thread_after_s);
+        if (object.empty()) break;
+        // Groups whose plans come close (of different objects: a group's
+        // plan keeps clear of the others of its own object by their reach):
+        // joined, the lowest keeping its place, and planned again as one.
+        std::vector<std::size_t> into(groups.size());
+        std::iota(into.begin(), into.end(), 0);
+        auto root = [&](std::size_t g) {
+            while (into[g] != g) g = into[g];
+            return g;
+        };
+        bool any = false;
+        for (std::size_t a = 0; a < groups.size(); ++a)
+            for (std::size_t b = a + 1; b < groups.size(); ++b) {
+                const std::size_t ra = root(a), rb = root(b);
+                if (ra == rb || plan::plans_apart(plans[a].scaffold, plans[b].scaffold, settings)) continue;
+                into[std::max(ra, rb)] = std::min(ra, rb);
+                any = true;
             }
-            GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
-                                           plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                           cavities, log, nullptr);
-            plans[g] = {std::move(done.points), std::move(done.scaffold)};
-        },
-        req.second_thread_after_s);
+        if (!any) break;
+        std::vector<plan::PointGroup> next;
+        std::vector<plan::GroupPlan> kept;
+        std::vector<char> again;
+        std::vector<std::size_t> at(groups.size());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            const std::size_t r = root(g);
+            if (r == g) {
+                at[g] = next.size();
+                next.push_back(std::move(groups[g]));
+                kept.push_back(std::move(plans[g]));
+                again.push_back(0);
+            } else {
+                next[at[r]] = plan::joined(next[at[r]], groups[g]);
+                again[at[r]] = 1;
+            }
+        }
+        // Still ordered by their lowest index: a joined group keeps its root's place.
+        log.debug("plans of {} groups came close: planned again as {}", groups.size() - next.size() +
+                  static_cast<std::size_t>(std::count(again.begin(), again.end(), 1)),
+                  std::count(again.begin(), again.end(), 1));
+        groups = std::move(next);
+        plans = std::move(kept);
+        todo = std::move(again);
+    }
     own.clear();
     GroupPlanned all;
     all.scaffold = plan::merge_plans(detected, groups, plans, all.points);
@@ -628,9 +702,12 @@ Outcome run(const Request& req, spdlog::logger& log) {
     // A plate of exact copies: the first copy's overhangs found and planned,
     // its plan moved to the others.
     std::optional<layers::Copies> copies;
+    // The plate's objects: each planned on its own where it can be.
+    std::optional<layers::ObjectMap> objects;
+    if (settings.method != Method::None) objects.emplace(stack);
     if (req.plan_copies && settings.method != Method::None && !stack.z_varies && own_support_mm == 0) {
         std::string why;
-        copies = layers::find_copies(stack, &why);
+        copies = layers::find_copies(stack, *objects, &why);
         if (!copies) log.debug("not a plate of copies: {}", why);
     }
     layers::LayerStack first_copy;
@@ -684,7 +761,8 @@ Outcome run(const Request& req, spdlog::logger& log) {
     first_copy = {};
     GroupPlanned planned = copied ? std::move(*copied)
                                   : plan_plate(req, points, overhangs, stack, settings, log, progress,
-                                               early_obstacles.valid() ? early_obstacles.get() : nullptr);
+                                               early_obstacles.valid() ? early_obstacles.get() : nullptr,
+                                               objects_of(points, objects, frame));
     copied.reset();
     // Back onto the bed.
     plan::GroupPlan placed = plan::moved({std::move(planned.points), std::move(planned.scaffold)}, frame.dx(), frame.dy());

@@ -100,6 +100,10 @@ bool same_beads(const LayerStack& stack, const Object& a, const Object& b) {
 }  // namespace
 
 std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
+    return find_copies(stack, ObjectMap(stack), why);
+}
+
+std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why) {
     auto no = [why](std::string reason) -> std::optional<Copies> {
         if (why) *why = std::move(reason);
         return std::nullopt;
@@ -109,7 +113,6 @@ std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
             if (model_bead(layer, s) && (gcode::is_support(s.role) || layer.slicer_support))
                 return no("the file holds support of its own");
     // Objects: the pieces of the model's footprint over all layers.
-    const ObjectMap map(stack);
     const auto count = static_cast<std::size_t>(map.count());
     if (count == 0) return no("no model");
     if (count < 2) return no("one object");

@@ -41,6 +41,8 @@ inline constexpr double kCopyTolerance = 0.003;
 // wipe towers and purge lines belong to no copy; a file holding support of
 // its own is no plate of copies. `why` (optional) says why not, for the log.
 std::optional<Copies> find_copies(const LayerStack& stack, std::string* why = nullptr);
+// The same with the plate's objects already found (ObjectMap of `stack`).
+std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why = nullptr);
 
 // The first copy alone: its beads (nothing else), the same layers
 // (heights, order) as `stack`, its box as bounds.

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "plan/braces.hpp"
+#include "plan/candidates.hpp"
 #include "plan/lean_in.hpp"
 #include "plan/pillars.hpp"
 #include "plan/workers.hpp"
@@ -50,7 +51,7 @@ struct UnionFind {
 }  // namespace
 
 std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
-                                     double reach) {
+                                     double reach, const std::vector<int>& object) {
     const auto& pts = points.points;
     const int n = static_cast<int>(pts.size());
     if (n == 0) return {};
@@ -70,7 +71,7 @@ std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, cons
                     for (int j : it->second) {
                         if (j <= i) continue;
                         const double ex = pts[i].x - pts[j].x, ey = pts[i].y - pts[j].y;
-                        if (ex * ex + ey * ey <= r2) uf.join(i, j);
+                        if (ex * ex + ey * ey <= r2 && (object.empty() || object[i] == object[j] || object[i] < 0 || object[j] < 0)) uf.join(i, j);
                     }
             }
 
@@ -126,6 +127,80 @@ std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, cons
         cells.insert(cells.end(), r.cells.begin(), r.cells.end());
     }
     return out;
+}
+
+PointGroup joined(const PointGroup& a, const PointGroup& b) {
+    PointGroup out;
+    std::merge(a.index.begin(), a.index.end(), b.index.begin(), b.index.end(), std::back_inserter(out.index));
+    std::size_t i = 0, j = 0;
+    while (i < a.cells.size() || j < b.cells.size()) {
+        if (j == b.cells.size() || (i < a.cells.size() && a.cells[i].first < b.cells[j].first)) {
+            out.cells.push_back(a.cells[i++]);
+        } else if (i == a.cells.size() || b.cells[j].first < a.cells[i].first) {
+            out.cells.push_back(b.cells[j++]);
+        } else {
+            out.cells.push_back(a.cells[i++]);
+            auto& cells = out.cells.back().second;
+            cells.insert(cells.end(), b.cells[j].second.begin(), b.cells[j].second.end());
+            ++j;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// What a plan builds, as XY segments with a reach either side over a
+// height range.
+struct Reach {
+    layers::Segment seg;
+    double r, z0, z1;
+};
+
+std::vector<Reach> reaches(const Scaffold& sc, const Settings& s) {
+    std::vector<Reach> out;
+    const double w = s.support_width;
+    for (const Column& c : sc.columns) {
+        // Widest at its foot (taper, flare, raft) or its top.
+        const double r = std::max({column_radius_at(c, c.z0, s), column_radius_at(c, c.z1, s), c.foot_radius,
+                                   c.raft_size * 0.5 * std::sqrt(2.0)}) + w;
+        out.push_back({{static_cast<float>(c.x0), static_cast<float>(c.y0), static_cast<float>(c.x1),
+                        static_cast<float>(c.y1)}, r, c.z0, c.z1});
+    }
+    for (const Bridge& b : sc.bridges) {
+        // Two lines side by side, reaching past its ends into the columns.
+        out.push_back({{static_cast<float>(b.x0), static_cast<float>(b.y0), static_cast<float>(b.x1),
+                        static_cast<float>(b.y1)}, w + s.pillar_radius, b.z, b.z + kBarThickness});
+    }
+    return out;
+}
+
+double segments_distance(const layers::Segment& a, const layers::Segment& b) {
+    auto crosses = [](const layers::Segment& p, const layers::Segment& q) {
+        auto side = [](double ax, double ay, double bx, double by, double cx, double cy) {
+            return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+        };
+        const double d1 = side(p.x0, p.y0, p.x1, p.y1, q.x0, q.y0), d2 = side(p.x0, p.y0, p.x1, p.y1, q.x1, q.y1);
+        const double d3 = side(q.x0, q.y0, q.x1, q.y1, p.x0, p.y0), d4 = side(q.x0, q.y0, q.x1, q.y1, p.x1, p.y1);
+        return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+    };
+    if (crosses(a, b)) return 0;
+    return std::min({layers::segment_distance(a.x0, a.y0, b), layers::segment_distance(a.x1, a.y1, b),
+                     layers::segment_distance(b.x0, b.y0, a), layers::segment_distance(b.x1, b.y1, a)});
+}
+
+}  // namespace
+
+bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings) {
+    const std::vector<Reach> ra = reaches(a, settings), rb = reaches(b, settings);
+    // Heights overlap within a layer or two: a bar's first layer rests on a column's top.
+    constexpr double kZSlack = 0.5;
+    for (const Reach& p : ra)
+        for (const Reach& q : rb) {
+            if (p.z1 + kZSlack < q.z0 || q.z1 + kZSlack < p.z0) continue;
+            if (segments_distance(p.seg, q.seg) < p.r + q.r + kPlansApart) return false;
+        }
+    return true;
 }
 
 overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group) {

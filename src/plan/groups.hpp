@@ -30,8 +30,23 @@ struct PointGroup {
 // Union-find over the points: two within `reach` of each other join, and so
 // do the points nearest to each end of one overhang region (8-connected
 // cells), which goes to their group. Groups ordered by their lowest index.
+// `object` (empty, or one per point: the object of the plate it holds):
+// points of different objects do not join by distance, so each object of a
+// plate is planned on its own; plans_apart then says whether that held.
 std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
-                                     double reach);
+                                     double reach, const std::vector<int>& object = {});
+
+// Two groups as one: their points and cells, in order.
+PointGroup joined(const PointGroup& a, const PointGroup& b);
+
+// mm between what two plans build (loops' and feet's outer edges, bars'
+// lines) beyond which neither changes the other's paths, islands or
+// travels: more than a loop shifts between layers, two beads wide.
+inline constexpr double kPlansApart = 2.0;
+// Whether nothing of `a` comes within kPlansApart of anything of `b` in XY
+// at overlapping heights (a column over its whole height at its widest, a
+// bar over its two layers and its ends' reach into the columns).
+bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings);
 
 // The group's points, in the input's order (positions as PointGroup::index).
 overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group);

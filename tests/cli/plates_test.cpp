@@ -118,10 +118,27 @@ TEST(Plates, EachObjectGetsTheSupportItGetsAlone) {
     EXPECT_NEAR(three, 3 * alone, 0.02 * 3 * alone);
 }
 
-TEST(Plates, ObjectsWithinReachArePlannedAsOne) {
-    const Planned r = run(mushrooms({100, 125}), 2);
-    EXPECT_FALSE(said(r, "independent groups"));
+TEST(Plates, ObjectsWithinReachArePlannedApartWhereTheirPlansStayApart) {
+    // 25 mm apart, within a bar's reach: each object its own group all the
+    // same, and each the support it gets alone.
+    const Planned two = run(mushrooms({100, 125}), 2), one = run(mushrooms({100, 125}), 1);
+    EXPECT_TRUE(said(two, "in 2 independent groups"));
+    EXPECT_FALSE(said(two, "came close"));
+    EXPECT_EQ(two.out, one.out);
+    const double alone = support_mm(run(mushrooms({110}), 2).out);
+    ASSERT_GT(alone, 0);
+    EXPECT_NEAR(support_mm(two.out), 2 * alone, 0.02 * 2 * alone);
+}
+
+TEST(Plates, ObjectsWhosePlansComeCloseArePlannedAsOne) {
+    // Caps 2 mm apart (two objects), the columns under their facing edges
+    // closer than kPlansApart: planned again as one group, as before
+    // objects were planned apart.
+    const Planned r = run(mushrooms({100, 114}), 2);
+    EXPECT_TRUE(said(r, "in 2 independent groups"));
+    EXPECT_TRUE(said(r, "plans of 2 groups came close: planned again as 1"));
     EXPECT_GT(support_mm(r.out), 0);
+    EXPECT_EQ(r.out, run(mushrooms({100, 114}), 1).out);
 }
 
 TEST(Plates, ExactCopiesArePlannedOnceAndTheirPlanMoved) {

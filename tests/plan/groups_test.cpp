@@ -126,6 +126,74 @@ TEST(PointGroups, OverhangRegionsGoToTheGroupOfTheirPoints) {
     EXPECT_NEAR(a.area_mm2 + b.area_mm2, 3 * 9 * 9 * 0.25, 1e-9);
 }
 
+TEST(PointGroups, PointsOfDifferentObjectsDoNotJoinByDistance) {
+    Settings s;
+    const double r = plan::group_reach(s);
+    overhang::SupportPoints p;
+    // 10 mm apart, well within reach: 0 and 1 on object 0, 2 on object 1,
+    // 3 on none found (joins either).
+    p.points = {{0, 0, 5, 25}, {10, 0, 5, 25}, {20, 0, 5, 25}, {40, 0, 5, 25}};
+    const auto apart = plan::point_groups(p, {}, r, {0, 0, 1, 1});
+    ASSERT_EQ(apart.size(), 2u);
+    EXPECT_EQ(apart[0].index, (std::vector<int>{0, 1}));
+    EXPECT_EQ(apart[1].index, (std::vector<int>{2, 3}));
+    EXPECT_EQ(plan::point_groups(p, {}, r).size(), 1u);  // no objects given: by distance alone
+    EXPECT_EQ(plan::point_groups(p, {}, r, {0, 0, 1, -1}).size(), 1u);
+}
+
+TEST(PointGroups, JoinedKeepsPointsAndCellsInOrder) {
+    plan::PointGroup a{{0, 3}, {{1, {{1, 1}}}, {4, {{2, 2}}}}};
+    plan::PointGroup b{{1, 2, 5}, {{0, {{9, 9}}}, {4, {{3, 3}}}, {7, {{4, 4}}}}};
+    const plan::PointGroup j = plan::joined(a, b);
+    EXPECT_EQ(j.index, (std::vector<int>{0, 1, 2, 3, 5}));
+    ASSERT_EQ(j.cells.size(), 4u);
+    EXPECT_EQ(j.cells[0].first, 0);
+    EXPECT_EQ(j.cells[1].first, 1);
+    EXPECT_EQ(j.cells[2].first, 4);
+    ASSERT_EQ(j.cells[2].second.size(), 2u);  // layer 4's cells of both
+    EXPECT_EQ(j.cells[3].first, 7);
+}
+
+TEST(PlansApart, TwoBeadsBeyondEachEdge) {
+    Settings s;  // support width 0.45, pillar radius 1
+    auto column = [](double x, double y, double z0, double z1) {
+        plan::Scaffold sc;
+        plan::Column c;
+        c.x0 = c.x1 = x;
+        c.y0 = c.y1 = y;
+        c.z0 = z0;
+        c.z1 = z1;
+        c.radius = 1.0;
+        sc.columns.push_back(c);
+        return sc;
+    };
+    // Each loop reaches 1 + 0.45 = 1.45 mm: apart from 1.45 + 1.45 + 2 = 4.9 mm.
+    const plan::Scaffold a = column(0, 0, 0, 10);
+    EXPECT_TRUE(plan::plans_apart(a, column(5.0, 0, 0, 10), s));
+    EXPECT_FALSE(plan::plans_apart(a, column(4.8, 0, 0, 10), s));
+    EXPECT_FALSE(plan::plans_apart(column(4.8, 0, 0, 10), a, s));
+    // 1 mm apart but one stands 2 mm above the other's top: apart.
+    EXPECT_TRUE(plan::plans_apart(a, column(1.0, 0, 12, 20), s));
+    EXPECT_FALSE(plan::plans_apart(a, column(1.0, 0, 10.4, 20), s));  // within half a mm of its top
+    // A flared foot (radius 2.5): 2.95 + 1.45 + 2 = 6.4 mm.
+    plan::Scaffold footed = column(0, 0, 0, 10);
+    footed.columns[0].foot_radius = 2.5;
+    EXPECT_FALSE(plan::plans_apart(footed, column(6.3, 0, 0, 10), s));
+    EXPECT_TRUE(plan::plans_apart(footed, column(6.5, 0, 0, 10), s));
+    // A bar at z 5 from (0, 0) to (10, 0): its lines reach 0.45 + 1 (into
+    // the columns past its ends) = 1.45 mm; a column beside its middle.
+    plan::Scaffold bar;
+    bar.bridges.push_back({0, 0, 10, 0, 5.0, {}, 0, 0, false});
+    EXPECT_FALSE(plan::plans_apart(bar, column(5, 4.8, 0, 6), s));
+    EXPECT_TRUE(plan::plans_apart(bar, column(5, 5.0, 0, 6), s));
+    EXPECT_TRUE(plan::plans_apart(bar, column(5, 1.0, 6, 9), s));  // starts 0.6 mm above the bar's top
+    // A slanted column whose line crosses the bar's: touching.
+    plan::Scaffold slant = column(5, -8, 0, 6);
+    slant.columns[0].y1 = 8;
+    EXPECT_FALSE(plan::plans_apart(bar, slant, s));
+    EXPECT_TRUE(plan::plans_apart({}, bar, s));
+}
+
 TEST(ForEachGroup, RunsEveryGroupOnceAndPassesTheFirstErrorOn) {
     for (int workers : {1, 2, 3}) {
         std::vector<std::atomic<int>> ran(7);
