@@ -38,30 +38,44 @@ double min_angle(double ax, double ay, double bx, double by, double cx, double c
     return std::min({angle(ax, ay, bx, by, cx, cy), angle(bx, by, cx, cy, ax, ay), angle(cx, cy, ax, ay, bx, by)});
 }
 
+// A loop's centre, outer edge and inner edge (0: a filled raft).
 struct Ring {
-    double x, y, r;
+    double x, y, r, inner;
 };
+
+Ring ring_of(const Column& c, double x, double y, double r, double zc, const Settings& s) {
+    const double w = s.support_width;
+    const bool raft = c.raft_size > 0 && zc <= s.first_layer_height + kEps;
+    return {x, y, r, raft ? 0.0 : std::max(0.0, r - (second_wall(c, r, w) ? 1.9 : 1.0) * w)};
+}
 
 // A pillar's centre and outer radius on the layer at zc, or at its top
 // where it ends under a bar at b.
 std::optional<Ring> ring_at(const PillarChain& p, const Scaffold& sc, const Settings& s, double zc, double b) {
     if (p.base > zc) return std::nullopt;
     if (const Column* c = chain_piece_at(p, sc, zc)) {
-        Ring r{0, 0, column_radius_at(*c, zc, s)};
-        column_centre_at(*c, zc, r.x, r.y);
-        return r;
+        double x, y;
+        column_centre_at(*c, zc, x, y);
+        return ring_of(*c, x, y, column_radius_at(*c, zc, s), zc, s);
     }
     if (std::abs(p.top - b) < kEps) {
         const Column& c = sc.columns[p.pieces.back()];
-        return Ring{c.x1, c.y1, column_radius_at(c, c.z1, s)};
+        return ring_of(c, c.x1, c.y1, column_radius_at(c, c.z1, s), c.z1, s);
     }
     return std::nullopt;
 }
 
-// Whether two pillars' loops touch on the layer at z (column_meetings' test).
+// Whether two pillars' loops touch on the layer at z (column_meetings' test):
+// within a cell of each other, and not one loop inside the other clear of
+// its inner edge (loops are rings: the validator's islands of two such
+// stay apart).
 bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& sc, const Settings& s, double z) {
     const auto p = ring_at(a, sc, s, z, -1), q = ring_at(b, sc, s, z, -1);
-    return p && q && std::hypot(p->x - q->x, p->y - q->y) <= p->r + q->r + s.resolution;
+    if (!p || !q) return false;
+    const double d = std::hypot(p->x - q->x, p->y - q->y);
+    const Ring& small = p->r <= q->r ? *p : *q;
+    const Ring& big = p->r <= q->r ? *q : *p;
+    return d <= p->r + q->r + s.resolution && d + small.r + s.resolution >= big.inner;
 }
 
 }  // namespace

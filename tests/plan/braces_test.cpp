@@ -340,6 +340,26 @@ struct TubeScene : ::testing::Test {
 // 3.21 mm in radius. The column that replaces it stands over the rule
 // with the planner's tenth (2.2), its neck at the top giving a little of
 // the 2.5.
+// Loops are rings: one inside another, clear of its inner edge, is no
+// meeting (the validator's islands of the two stay apart). A 3 mm loop
+// with its second wall (support width 0.45: beads from 3 - 1.9 x 0.45 =
+// 2.145 to 3) round a 1 mm one: touching where the small one's outer edge
+// comes within a cell (0.1) of 2.145.
+TEST_F(BraceScene, ALoopInsideAnotherClearOfItMeetsNothing) {
+    auto meetings = [&](double dx) {
+        plan::Scaffold scene;
+        scene.columns.push_back(plain(30, 30, 10));
+        scene.columns.back().radius = 3.0;
+        scene.columns.push_back(plain(30 + dx, 30, 10));
+        return plan::column_meetings(plan::pillar_chains(scene), scene, st, s).size();
+    };
+    EXPECT_EQ(meetings(0.0), 0u);   // 0 + 1 + 0.1 < 2.145
+    EXPECT_EQ(meetings(1.0), 0u);   // 2.1 < 2.145
+    EXPECT_EQ(meetings(1.1), 1u);   // 2.2: the beads touch
+    EXPECT_EQ(meetings(4.0), 1u);   // beside it, 4 <= 3 + 1 + 0.1
+    EXPECT_EQ(meetings(4.2), 0u);   // apart
+}
+
 TEST_F(TubeScene, AWeakColumnNoTriangleTiesIsDroppedAgainAsWideAsFits) {
     sc.columns.push_back(plain(40, 40, 40));
     EXPECT_NEAR(1 / plan::chain_compliance(plan::pillar_chains(sc)[0], 40, sc, st, s), 0.108, 0.001);
