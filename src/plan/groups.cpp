@@ -1,6 +1,7 @@
 #include "plan/groups.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -155,22 +156,44 @@ namespace {
 struct Reach {
     layers::Segment seg;
     double r, z0, z1;
+    bool low = false;      // a column's below the feet's height (or a raft)
+    bool bar = false;
 };
+
+// Columns are judged in slices this tall: a tapered column is widest at
+// its foot, and a neighbour's bar higher up need not keep clear of that.
+constexpr double kSlice = 2.0;
 
 std::vector<Reach> reaches(const Scaffold& sc, const Settings& s) {
     std::vector<Reach> out;
     const double w = s.support_width;
+    auto add = [&](double xa, double ya, double xb, double yb, double r, double z0, double z1, bool low, bool bar) {
+        out.push_back({{static_cast<float>(xa), static_cast<float>(ya), static_cast<float>(xb), static_cast<float>(yb)},
+                       r, z0, z1, low, bar});
+    };
+    auto slice = [&](const Column& c, double za, double zb, bool low) {
+        double xa, ya, xb, yb;
+        column_centre_at(c, za, xa, ya);
+        column_centre_at(c, zb, xb, yb);
+        // The radius narrows upward (taper, flared foot, neck): widest at an end.
+        const double r = std::max({column_radius_at(c, za, s), column_radius_at(c, (za + zb) / 2, s),
+                                   column_radius_at(c, zb, s)}) + w;
+        add(xa, ya, xb, yb, r, za, zb, low, false);
+    };
     for (const Column& c : sc.columns) {
-        // Widest at its foot (taper, flare, raft) or its top.
-        const double r = std::max({column_radius_at(c, c.z0, s), column_radius_at(c, c.z1, s), c.foot_radius,
-                                   c.raft_size * 0.5 * std::sqrt(2.0)}) + w;
-        out.push_back({{static_cast<float>(c.x0), static_cast<float>(c.y0), static_cast<float>(c.x1),
-                        static_cast<float>(c.y1)}, r, c.z0, c.z1});
+        // A raft: a square on the first layer, reaching its corners.
+        if (c.raft_size > 0) add(c.x0, c.y0, c.x0, c.y0, c.raft_size * 0.5 * std::sqrt(2.0), c.z0, c.z0, true, false);
+        double z = c.z0;
+        if (z < s.foot_height) {
+            z = std::min(c.z1, s.foot_height);
+            slice(c, c.z0, z, true);
+        }
+        const int n = static_cast<int>(std::ceil((c.z1 - z) / kSlice - 1e-9));
+        for (int k = 0; k < n; ++k) slice(c, z + (c.z1 - z) * k / n, z + (c.z1 - z) * (k + 1) / n, false);
     }
     for (const Bridge& b : sc.bridges) {
         // Two lines side by side, reaching past its ends into the columns.
-        out.push_back({{static_cast<float>(b.x0), static_cast<float>(b.y0), static_cast<float>(b.x1),
-                        static_cast<float>(b.y1)}, w + s.pillar_radius, b.z, b.z + kBarThickness});
+        add(b.x0, b.y0, b.x1, b.y1, w + s.pillar_radius, b.z, b.z + kBarThickness, false, true);
     }
     return out;
 }
@@ -193,13 +216,27 @@ double segments_distance(const layers::Segment& a, const layers::Segment& b) {
 
 bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings) {
     const std::vector<Reach> ra = reaches(a, settings), rb = reaches(b, settings);
-    // Heights overlap within a layer or two: a bar's first layer rests on a column's top.
     constexpr double kZSlack = 0.5;
-    for (const Reach& p : ra)
+    auto box = [](const Reach& p, double pad) {
+        return std::array<double, 4>{std::min(p.seg.x0, p.seg.x1) - p.r - pad, std::min(p.seg.y0, p.seg.y1) - p.r - pad,
+                                     std::max(p.seg.x0, p.seg.x1) + p.r + pad, std::max(p.seg.y0, p.seg.y1) + p.r + pad};
+    };
+    for (const Reach& p : ra) {
+        const auto pb = box(p, kPlansApart);
         for (const Reach& q : rb) {
-            if (p.z1 + kZSlack < q.z0 || q.z1 + kZSlack < p.z0) continue;
+            // Loops near the bed that meet merge into one island, which only
+            // stiffens both (METHOD's sections), and no bar is among them.
+            if (p.low && q.low) continue;
+            // A bar's first layer rests on a column's top: a bar meets what
+            // ends or starts within a layer or two of it; columns one above
+            // the other's slice do not meet.
+            const double slack = p.bar || q.bar ? kZSlack : 0.0;
+            if (p.z1 + slack <= q.z0 || q.z1 + slack <= p.z0) continue;
+            const auto qb = box(q, 0);
+            if (qb[0] > pb[2] || pb[0] > qb[2] || qb[1] > pb[3] || pb[1] > qb[3]) continue;
             if (segments_distance(p.seg, q.seg) < p.r + q.r + kPlansApart) return false;
         }
+    }
     return true;
 }
 

@@ -44,8 +44,10 @@ PointGroup joined(const PointGroup& a, const PointGroup& b);
 // travels: more than a loop shifts between layers, two beads wide.
 inline constexpr double kPlansApart = 2.0;
 // Whether nothing of `a` comes within kPlansApart of anything of `b` in XY
-// at overlapping heights (a column over its whole height at its widest, a
-// bar over its two layers and its ends' reach into the columns).
+// at overlapping heights (a column in slices of 2 mm, each at its widest, a
+// raft on its layer, a bar over its two layers and its ends' reach into
+// the columns). Columns below the feet's height (`foot_height`) and rafts
+// may meet each other: loops that meet there only stiffen each other.
 bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings);
 
 // The group's points, in the input's order (positions as PointGroup::index).

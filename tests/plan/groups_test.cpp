@@ -174,12 +174,24 @@ TEST(PlansApart, TwoBeadsBeyondEachEdge) {
     EXPECT_FALSE(plan::plans_apart(column(4.8, 0, 0, 10), a, s));
     // 1 mm apart but one stands 2 mm above the other's top: apart.
     EXPECT_TRUE(plan::plans_apart(a, column(1.0, 0, 12, 20), s));
-    EXPECT_FALSE(plan::plans_apart(a, column(1.0, 0, 10.4, 20), s));  // within half a mm of its top
-    // A flared foot (radius 2.5): 2.95 + 1.45 + 2 = 6.4 mm.
+    EXPECT_TRUE(plan::plans_apart(a, column(1.0, 0, 10.4, 20), s));  // one above the other
+    plan::Scaffold above;
+    above.bridges.push_back({1, 0, 11, 0, 10.2, {}, 0, 0, false});
+    EXPECT_FALSE(plan::plans_apart(a, above, s));  // a bar within half a mm of its top rests on it
+    above.bridges[0].z = 10.6;
+    EXPECT_TRUE(plan::plans_apart(a, above, s));
+    // A flared foot (radius 2.5, 2.5 mm high): other loops there may meet
+    // it (loops near the bed that meet only stiffen each other), a bar keeps
+    // clear of it by 2.95 + 1.45 + 2 = 6.4 mm.
     plan::Scaffold footed = column(0, 0, 0, 10);
     footed.columns[0].foot_radius = 2.5;
-    EXPECT_FALSE(plan::plans_apart(footed, column(6.3, 0, 0, 10), s));
-    EXPECT_TRUE(plan::plans_apart(footed, column(6.5, 0, 0, 10), s));
+    EXPECT_TRUE(plan::plans_apart(footed, column(5.0, 0, 0, 10), s));  // the feet 5 < 6.4 apart, the loops 5 >= 4.9
+    EXPECT_FALSE(plan::plans_apart(footed, column(4.8, 0, 2.6, 10), s));  // above the feet, 4.8 < 4.9
+    plan::Scaffold low_bar;
+    low_bar.bridges.push_back({-5, 6.3, 5, 6.3, 1.0, {}, 0, 0, false});
+    EXPECT_FALSE(plan::plans_apart(footed, low_bar, s));
+    low_bar.bridges[0].y0 = low_bar.bridges[0].y1 = 6.5;
+    EXPECT_TRUE(plan::plans_apart(footed, low_bar, s));
     // A bar at z 5 from (0, 0) to (10, 0): its lines reach 0.45 + 1 (into
     // the columns past its ends) = 1.45 mm; a column beside its middle.
     plan::Scaffold bar;
@@ -192,6 +204,29 @@ TEST(PlansApart, TwoBeadsBeyondEachEdge) {
     slant.columns[0].y1 = 8;
     EXPECT_FALSE(plan::plans_apart(bar, slant, s));
     EXPECT_TRUE(plan::plans_apart({}, bar, s));
+    // Tapered (0.3 mm per mm below z 10): radius 4 at the bed, 1.6 at z 8.
+    // Judged in 2 mm slices, the top one (z 8 to 10) reaches 1.6 + 0.45 =
+    // 2.05: a bar at z 9 keeps clear from 2.05 + 1.45 + 2 = 5.5 mm, though
+    // the foot reaches 4.45.
+    plan::Scaffold tapered = column(0, 0, 0, 10);
+    tapered.columns[0].taper = 0.3;
+    tapered.columns[0].hold_z = 10;
+    plan::Scaffold high;
+    high.bridges.push_back({-5, 5.6, 5, 5.6, 9.0, {}, 0, 0, false});
+    EXPECT_TRUE(plan::plans_apart(tapered, high, s));
+    high.bridges[0].y0 = high.bridges[0].y1 = 5.4;
+    EXPECT_FALSE(plan::plans_apart(tapered, high, s));
+    high.bridges[0].z = 1.0;
+    high.bridges[0].y0 = high.bridges[0].y1 = 7.8;  // beside the foot: 4.45 + 1.45 + 2 = 7.9
+    EXPECT_FALSE(plan::plans_apart(tapered, high, s));
+    // Rafts (7 mm squares, reaching 4.95 to their corners) on the bed may
+    // meet each other, not a bar.
+    plan::Scaffold r1 = column(0, 0, 0, 10), r2 = column(6.5, 0, 0, 10);
+    r1.columns[0].raft_size = r2.columns[0].raft_size = 7;
+    EXPECT_TRUE(plan::plans_apart(r1, r2, s));
+    plan::Scaffold bed_bar;
+    bed_bar.bridges.push_back({-5, 8.3, 5, 8.3, 0.0, {}, 0, 0, false});  // 4.95 + 1.45 + 2 = 8.4
+    EXPECT_FALSE(plan::plans_apart(r1, bed_bar, s));
 }
 
 TEST(ForEachGroup, RunsEveryGroupOnceAndPassesTheFirstErrorOn) {
