@@ -72,7 +72,8 @@ std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, cons
                     for (int j : it->second) {
                         if (j <= i) continue;
                         const double ex = pts[i].x - pts[j].x, ey = pts[i].y - pts[j].y;
-                        if (ex * ex + ey * ey <= r2 && (object.empty() || object[i] == object[j] || object[i] < 0 || object[j] < 0)) uf.join(i, j);
+                        const bool same = object.empty() || object[i] == object[j] || object[i] < 0 || object[j] < 0;
+                        if (same && ex * ex + ey * ey <= r2) uf.join(i, j);
                     }
             }
 
