@@ -533,6 +533,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     // rasters, the first thread's the one already built.
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
     std::vector<plan::GroupPlan> plans(groups.size());
+    std::vector<plan::PlanReach> reach(groups.size());  // each plan's, for plans_apart
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -557,6 +558,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
                                                cavities, log, nullptr);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
+                if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
             },
             heavy >= 2 ? 0.0 : req.second_thread_after_s);
         if (object.empty()) break;
@@ -573,13 +575,14 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         for (std::size_t a = 0; a < groups.size(); ++a)
             for (std::size_t b = a + 1; b < groups.size(); ++b) {
                 const std::size_t ra = root(a), rb = root(b);
-                if (ra == rb || plan::plans_apart(plans[a].scaffold, plans[b].scaffold, settings)) continue;
+                if (ra == rb || plan::plans_apart(reach[a], reach[b])) continue;
                 into[std::max(ra, rb)] = std::min(ra, rb);
                 any = true;
             }
         if (!any) break;
         std::vector<plan::PointGroup> next;
         std::vector<plan::GroupPlan> kept;
+        std::vector<plan::PlanReach> kept_reach;
         std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
         for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -588,6 +591,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 at[g] = next.size();
                 next.push_back(std::move(groups[g]));
                 kept.push_back(std::move(plans[g]));
+                kept_reach.push_back(std::move(reach[g]));
                 again.push_back(0);
             } else {
                 next[at[r]] = plan::joined(next[at[r]], groups[g]);
@@ -600,6 +604,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                   std::count(again.begin(), again.end(), 1));
         groups = std::move(next);
         plans = std::move(kept);
+        reach = std::move(kept_reach);
         todo = std::move(again);
     }
     own.clear();

@@ -1,7 +1,6 @@
 #include "plan/groups.hpp"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -152,25 +151,33 @@ PointGroup joined(const PointGroup& a, const PointGroup& b) {
 
 namespace {
 
-// What a plan builds, as XY segments with a reach either side over a
-// height range.
-struct Reach {
-    layers::Segment seg;
-    double r, z0, z1;
-    bool low = false;      // a column's below the feet's height (or a raft)
-    bool bar = false;
-};
-
 // Columns are judged in slices this tall: a tapered column is widest at
 // its foot, and a neighbour's bar higher up need not keep clear of that.
 constexpr double kSlice = 2.0;
 
-std::vector<Reach> reaches(const Scaffold& sc, const Settings& s) {
-    std::vector<Reach> out;
+double segments_distance(const layers::Segment& a, const layers::Segment& b) {
+    auto crosses = [](const layers::Segment& p, const layers::Segment& q) {
+        auto side = [](double ax, double ay, double bx, double by, double cx, double cy) {
+            return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+        };
+        const double d1 = side(p.x0, p.y0, p.x1, p.y1, q.x0, q.y0), d2 = side(p.x0, p.y0, p.x1, p.y1, q.x1, q.y1);
+        const double d3 = side(q.x0, q.y0, q.x1, q.y1, p.x0, p.y0), d4 = side(q.x0, q.y0, q.x1, q.y1, p.x1, p.y1);
+        return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+    };
+    if (crosses(a, b)) return 0;
+    return std::min({layers::segment_distance(a.x0, a.y0, b), layers::segment_distance(a.x1, a.y1, b),
+                     layers::segment_distance(b.x0, b.y0, a), layers::segment_distance(b.x1, b.y1, a)});
+}
+
+}  // namespace
+
+PlanReach plan_reach(const Scaffold& sc, const Settings& s) {
+    PlanReach out;
     const double w = s.support_width;
     auto add = [&](double xa, double ya, double xb, double yb, double r, double z0, double z1, bool low, bool bar) {
-        out.push_back({{static_cast<float>(xa), static_cast<float>(ya), static_cast<float>(xb), static_cast<float>(yb)},
-                       r, z0, z1, low, bar});
+        out.parts.push_back({{static_cast<float>(xa), static_cast<float>(ya), static_cast<float>(xb), static_cast<float>(yb)},
+                             r, z0, z1, low, bar, std::min(xa, xb) - r, std::min(ya, yb) - r, std::max(xa, xb) + r,
+                             std::max(ya, yb) + r});
     };
     auto slice = [&](const Column& c, double za, double zb, bool low) {
         double xa, ya, xb, yb;
@@ -199,32 +206,10 @@ std::vector<Reach> reaches(const Scaffold& sc, const Settings& s) {
     return out;
 }
 
-double segments_distance(const layers::Segment& a, const layers::Segment& b) {
-    auto crosses = [](const layers::Segment& p, const layers::Segment& q) {
-        auto side = [](double ax, double ay, double bx, double by, double cx, double cy) {
-            return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-        };
-        const double d1 = side(p.x0, p.y0, p.x1, p.y1, q.x0, q.y0), d2 = side(p.x0, p.y0, p.x1, p.y1, q.x1, q.y1);
-        const double d3 = side(q.x0, q.y0, q.x1, q.y1, p.x0, p.y0), d4 = side(q.x0, q.y0, q.x1, q.y1, p.x1, p.y1);
-        return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-    };
-    if (crosses(a, b)) return 0;
-    return std::min({layers::segment_distance(a.x0, a.y0, b), layers::segment_distance(a.x1, a.y1, b),
-                     layers::segment_distance(b.x0, b.y0, a), layers::segment_distance(b.x1, b.y1, a)});
-}
-
-}  // namespace
-
-bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings) {
-    const std::vector<Reach> ra = reaches(a, settings), rb = reaches(b, settings);
+bool plans_apart(const PlanReach& a, const PlanReach& b) {
     constexpr double kZSlack = 0.5;
-    auto box = [](const Reach& p, double pad) {
-        return std::array<double, 4>{std::min(p.seg.x0, p.seg.x1) - p.r - pad, std::min(p.seg.y0, p.seg.y1) - p.r - pad,
-                                     std::max(p.seg.x0, p.seg.x1) + p.r + pad, std::max(p.seg.y0, p.seg.y1) + p.r + pad};
-    };
-    for (const Reach& p : ra) {
-        const auto pb = box(p, kPlansApart);
-        for (const Reach& q : rb) {
+    for (const PlanReach::Part& p : a.parts)
+        for (const PlanReach::Part& q : b.parts) {
             // Loops near the bed that meet merge into one island, which only
             // stiffens both (METHOD's sections), and no bar is among them.
             if (p.low && q.low) continue;
@@ -233,12 +218,16 @@ bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings)
             // the other's slice do not meet.
             const double slack = p.bar || q.bar ? kZSlack : 0.0;
             if (p.z1 + slack <= q.z0 || q.z1 + slack <= p.z0) continue;
-            const auto qb = box(q, 0);
-            if (qb[0] > pb[2] || pb[0] > qb[2] || qb[1] > pb[3] || pb[1] > qb[3]) continue;
+            if (q.x0 > p.x1 + kPlansApart || p.x0 > q.x1 + kPlansApart || q.y0 > p.y1 + kPlansApart ||
+                p.y0 > q.y1 + kPlansApart)
+                continue;
             if (segments_distance(p.seg, q.seg) < p.r + q.r + kPlansApart) return false;
         }
-    }
     return true;
+}
+
+bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings) {
+    return plans_apart(plan_reach(a, settings), plan_reach(b, settings));
 }
 
 overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group) {

@@ -50,6 +50,22 @@ inline constexpr double kPlansApart = 2.0;
 // may meet each other: loops that meet there only stiffen each other.
 bool plans_apart(const Scaffold& a, const Scaffold& b, const Settings& settings);
 
+// A plan as plans_apart judges it, worked out once for a plan compared
+// with many: its parts as XY segments with a reach either side, over a
+// height range, and the box of each.
+struct PlanReach {
+    struct Part {
+        layers::Segment seg;
+        double r = 0, z0 = 0, z1 = 0;
+        bool low = false;  // a column's below the feet's height, or a raft
+        bool bar = false;
+        double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // its box, reach included
+    };
+    std::vector<Part> parts;
+};
+PlanReach plan_reach(const Scaffold& plan, const Settings& settings);
+bool plans_apart(const PlanReach& a, const PlanReach& b);
+
 // The group's points, in the input's order (positions as PointGroup::index).
 overhang::SupportPoints group_points(const overhang::SupportPoints& points, const PointGroup& group);
 // The group's overhang cells, on grids shaped like the input's, only on
