@@ -37,6 +37,12 @@ struct PillarChain {
 };
 std::vector<PillarChain> pillar_chains(const Scaffold& scaffold);
 
+// Whether two pillars' loops touch on the layer at z (column_meetings' test):
+// within a cell of each other, and not one loop inside the other clear of
+// its inner edge (loops are rings: the validator's islands of two such
+// stay apart).
+bool rings_touch(const PillarChain& a, const PillarChain& b, const Scaffold& scaffold, const Settings& settings, double z);
+
 // Whether column i is stacked on the piece just before it, where that one
 // ends (the next piece of the same pillar, not a branch).
 bool stacked_on_previous(const Scaffold& scaffold, int i);

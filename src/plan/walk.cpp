@@ -82,9 +82,35 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
                 meet({foot.z0, h, o, -1});
         }
     }
-    for (int i = 0; i < static_cast<int>(nodes.size()); ++i)
-        for (int c : nodes[static_cast<std::size_t>(i)].chains)
-            if (c >= 0 && c < n) event_at(c, nodes[static_cast<std::size_t>(i)].z).node = i;
+    // A node is the island of its bars' first layer: its three pillars and
+    // every pillar whose loops touch theirs there (through others too), all
+    // standing on it above (METHOD: what stands on a brace node starts
+    // afresh there; figure at 5 N/mm: a column touching a corner's loop at
+    // the tie, walked by its own way down at 41 N/mm, stood on the node at
+    // 2800 for the validator).
+    std::vector<double> tops;
+    for (const layers::Layer& layer : stack.layers)
+        if (!layer.purge) tops.push_back(layer.z);
+    std::sort(tops.begin(), tops.end());
+    for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+        const BraceNode& node = nodes[static_cast<std::size_t>(i)];
+        std::vector<int> in;
+        for (int c : node.chains)
+            if (c >= 0 && c < n) {
+                event_at(c, node.z).node = i;
+                in.push_back(c);
+            }
+        const auto first = std::upper_bound(tops.begin(), tops.end(), node.z + kEps);
+        if (first == tops.end()) continue;
+        for (std::size_t k = 0; k < in.size(); ++k)
+            for (int o = 0; o < n; ++o)
+                if (std::find(in.begin(), in.end(), o) == in.end() &&
+                    rings_touch(chains_[static_cast<std::size_t>(in[k])], chains_[static_cast<std::size_t>(o)], scaffold,
+                                settings, *first)) {
+                    event_at(o, node.z).node = i;
+                    in.push_back(o);
+                }
+    }
     for (std::vector<Event>& ev : events_)
         std::sort(ev.begin(), ev.end(), [](const Event& a, const Event& b) { return a.z < b.z; });
 }
@@ -151,6 +177,7 @@ const PlanWalk::State& PlanWalk::state(int c, int e) {
             if (node.chains[static_cast<std::size_t>(i)] != c && k[static_cast<std::size_t>(i)] > best_k) {
                 best_k = k[static_cast<std::size_t>(i)];
                 st.below = path(node.chains[static_cast<std::size_t>(i)], ev.z);
+                st.twig = node.chains[static_cast<std::size_t>(i)];
             }
     }
     for (std::size_t m = 0; m < ev.meetings.size(); ++m) {
@@ -160,6 +187,7 @@ const PlanWalk::State& PlanWalk::state(int c, int e) {
             best_k = k;
             st.below = other;
             st.leave = static_cast<int>(m);
+            st.twig = -1;
         }
     }
     return memo_[key] = st;
@@ -176,10 +204,31 @@ std::vector<ColumnMeeting> PlanWalk::departures(int c, double z) {
             const ColumnMeeting m = ev.meetings[static_cast<std::size_t>(st.leave)];
             out.push_back(m);
             c = m.b;
+        } else if (st.twig >= 0) {
+            out.push_back({ze, c, st.twig, -1});
+            c = st.twig;
         }
         e = event_below(c, ze);
     }
     return out;
+}
+
+double PlanWalk::node_below(int c, double z) {
+    for (int e = event_below(c, z); e >= 0; --e) {
+        const State& st = state(c, e);
+        if (st.node || st.twig >= 0) return events_[static_cast<std::size_t>(c)][static_cast<std::size_t>(e)].z;
+        if (st.leave >= 0) break;
+    }
+    return -std::numeric_limits<double>::infinity();
+}
+
+WalkSums PlanWalk::path_from_below(int c, double at, double z) {
+    WalkSums p = path(c, at);
+    const WalkSums up = own(c, at, z);
+    p.s0 += up.s0;
+    p.s1 += up.s1;
+    p.s2 += up.s2;
+    return p;
 }
 
 }  // namespace scaffold::plan

@@ -49,6 +49,14 @@ public:
     // The meetings at which the walk down from pillar c at z leaves the
     // pillar it is on for another, in the order it takes them.
     std::vector<ColumnMeeting> departures(int c, double z);
+    // The highest brace node below z that the walk down from pillar c's
+    // layer at z reaches while still on c, or -infinity.
+    double node_below(int c, double z);
+    // The walk's path as it comes up to height `at` from below (a node at
+    // `at` not taken), then up c's own layers to z: what a layer of c just
+    // over a node stands on where the validator finds c's loop not yet on
+    // the node's island there.
+    WalkSums path_from_below(int c, double at, double z);
 
 private:
     // What meets pillar c at one height: other pillars, or a node.
@@ -68,6 +76,7 @@ private:
         WalkSums below;
         int leave = -1;     // index into the event's meetings, or -1: stays on c
         bool node = false;  // a brace node: the walk starts afresh there
+        int twig = -1;      // a node with a twig: the pillar the walk goes on down instead
     };
     const State& state(int c, int e);
 

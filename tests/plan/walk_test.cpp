@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "plan/braces.hpp"
 #include "plan/obstacles.hpp"
@@ -147,4 +148,57 @@ TEST_F(WalkScene, ABarThatTakesAStandingColumnsWalkShortOfTheRuleIsReported) {
     short_of_rule.clear();
     plan::add_braces(again, st, obs, s, {}, &short_of_rule);
     EXPECT_TRUE(short_of_rule.empty());
+}
+
+// A pillar whose loops touch a corner's on the node's first layer is on the
+// node's island there (METHOD: what stands on the node starts afresh): D, a
+// 1 mm ring from the bed to 30 beside corner 0 of ABraceNodeStartsTheWalkAfresh
+// (centres 1.9 mm apart: loops within a cell). At 30, the node's give
+// 0.385923 and D's own 10 mm above it, (10^3/3 - 50 x 0.000667) / 2303.22 =
+// 0.144710: 0.530633 mm/N, 1.885 N/mm; walked from its base, as before,
+// (30^3/3 - 150 x 0.000667) / 2303.22 = 8999.9 / 2303.22 = 3.907529 mm/N.
+TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
+    sc.columns.push_back(ring(30, 30, 0, 40, 1.0));
+    sc.columns.push_back(ring(40, 30, 0, 40, 1.0));
+    sc.columns.push_back(ring(35, 38.66, 0, 40, 1.0));
+    sc.columns.push_back(ring(30, 28.1, 0, 30, 1.0));
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 4u);
+    ASSERT_TRUE(plan::rings_touch(chains[0], chains[3], sc, s, 20.2));
+    const std::vector<plan::BraceNode> nodes{{20, {0, 1, 2}}};  // outlives the walks
+    plan::PlanWalk walk(chains, nodes, sc, st, s);
+    EXPECT_NEAR(walk.path(3, 30).at(30), 0.530633, 1e-5);
+    EXPECT_NEAR(walk.node_below(3, 30), 20, 1e-9);
+    // Just over the node, as it reaches the node's layer from below: its own
+    // ring from the bed, (20.4^3/3 - 102 x 0.000667) / 2303.22 = 1.228636.
+    EXPECT_NEAR(walk.path_from_below(3, 20, 20.4).at(20.4), 1.228636, 1e-5);
+    // Moved 3 mm off corner 0 it touches nothing: its own way down.
+    sc.columns[3].y0 = sc.columns[3].y1 = 27;
+    plan::PlanWalk apart(plan::pillar_chains(sc), nodes, sc, st, s);
+    EXPECT_NEAR(apart.path(3, 30).at(30), 3.907529, 1e-5);
+    EXPECT_EQ(apart.node_below(3, 30), -std::numeric_limits<double>::infinity());
+}
+
+// A twig at a node (under a quarter of the strongest's k) makes no node:
+// the walk goes on down the stiffest of the three there, and says so.
+// Corner 1 a 1.4 mm ring: (20^3/3 - 100 x 0.000667) / 8026.83 = 0.332211
+// mm/N, 3.010 N/mm at 20; corner 0 (1 mm) 0.8637, the 0.5 mm twig 0.0386,
+// under 0.25 x 3.010. From corner 0's top (40) the walk leaves for corner 1
+// at 20, by no bar; that is where its way down changes, as at a node.
+TEST_F(WalkScene, ATwigsNodeIsADepartureToTheStiffest) {
+    sc.columns.push_back(ring(30, 30, 0, 40, 1.0));
+    sc.columns.push_back(ring(40, 30, 0, 40, 1.4));
+    sc.columns.push_back(ring(35, 38.66, 0, 40, 0.5));
+    const std::vector<plan::BraceNode> nodes{{20, {0, 1, 2}}};
+    plan::PlanWalk walk(plan::pillar_chains(sc), nodes, sc, st, s);
+    const auto left = walk.departures(0, 40);
+    ASSERT_EQ(left.size(), 1u);
+    EXPECT_EQ(left[0].b, 1);
+    EXPECT_EQ(left[0].bar, -1);
+    EXPECT_NEAR(left[0].z, 20, 1e-9);
+    EXPECT_NEAR(walk.node_below(0, 40), 20, 1e-9);
+    // At 40: corner 1's layers under a 20..40 mm lever plus corner 0's own
+    // 20 mm, ((40^3 - 20^3)/3 - 100 x 0.000667) / 8026.83 = 2.325531 and
+    // 1.157770: 3.483301 mm/N.
+    EXPECT_NEAR(walk.path(0, 40).at(40), 3.483301, 1e-5);
 }
