@@ -43,6 +43,14 @@ struct WalkScene : ::testing::Test {
         sc.columns.push_back(ring(36, 30, 4.8, 5, 0.5, plan::Base::Model));
         sc.bridges.push_back({36, 30, 31.4, 30, 5, {}, 0, 0, false});
     }
+    // Three rings 40 mm tall from the bed, 10 mm apart (METHOD's worked
+    // brace), of these radii, tied at 20 mm.
+    const std::vector<plan::BraceNode> tie_at_20{{20, {0, 1, 2}}};
+    void triangle(double r0, double r1, double r2) {
+        sc.columns.push_back(ring(30, 30, 0, 40, r0));
+        sc.columns.push_back(ring(40, 30, 0, 40, r1));
+        sc.columns.push_back(ring(35, 38.66, 0, 40, r2));
+    }
 };
 
 }  // namespace
@@ -100,10 +108,8 @@ TEST_F(WalkScene, AWeakerColumnMetDoesNotTakeTheWalk) {
 // each part is a 20 mm ring again, 1.157770: 1.543693 mm/N at the top,
 // 0.648 N/mm (about 0.7, METHOD), against 40^3/3 / 2303.22 = 9.26 alone.
 TEST_F(WalkScene, ABraceNodeStartsTheWalkAfresh) {
-    sc.columns.push_back(ring(30, 30, 0, 40, 1.0));
-    sc.columns.push_back(ring(40, 30, 0, 40, 1.0));
-    sc.columns.push_back(ring(35, 38.66, 0, 40, 1.0));
-    const std::vector<plan::BraceNode> nodes{{20, {0, 1, 2}}};
+    triangle(1.0, 1.0, 1.0);
+    const std::vector<plan::BraceNode>& nodes = tie_at_20;
     plan::PlanWalk walk(plan::pillar_chains(sc), nodes, sc, st, s);
     EXPECT_NEAR(walk.path(0, 40).at(40), 1.543693, 1e-5);
     EXPECT_NEAR(1 / walk.path(2, 40).at(40), 0.6478, 1e-4);
@@ -158,15 +164,12 @@ TEST_F(WalkScene, ABarThatTakesAStandingColumnsWalkShortOfTheRuleIsReported) {
 // 0.144710: 0.530633 mm/N, 1.885 N/mm; walked from its base, as before,
 // (30^3/3 - 150 x 0.000667) / 2303.22 = 8999.9 / 2303.22 = 3.907529 mm/N.
 TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
-    sc.columns.push_back(ring(30, 30, 0, 40, 1.0));
-    sc.columns.push_back(ring(40, 30, 0, 40, 1.0));
-    sc.columns.push_back(ring(35, 38.66, 0, 40, 1.0));
+    triangle(1.0, 1.0, 1.0);
     sc.columns.push_back(ring(30, 28.1, 0, 30, 1.0));
     const auto chains = plan::pillar_chains(sc);
     ASSERT_EQ(chains.size(), 4u);
     ASSERT_TRUE(plan::rings_touch(chains[0], chains[3], sc, s, 20.2));
-    const std::vector<plan::BraceNode> nodes{{20, {0, 1, 2}}};  // outlives the walks
-    plan::PlanWalk walk(chains, nodes, sc, st, s);
+    plan::PlanWalk walk(chains, tie_at_20, sc, st, s);
     EXPECT_NEAR(walk.path(3, 30).at(30), 0.530633, 1e-5);
     EXPECT_NEAR(walk.node_below(3, 30), 20, 1e-9);
     // Just over the node, as it reaches the node's layer from below: its own
@@ -174,7 +177,7 @@ TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
     EXPECT_NEAR(walk.path_from_below(3, 20, 20.4).at(20.4), 1.228636, 1e-5);
     // Moved 3 mm off corner 0 it touches nothing: its own way down.
     sc.columns[3].y0 = sc.columns[3].y1 = 27;
-    plan::PlanWalk apart(plan::pillar_chains(sc), nodes, sc, st, s);
+    plan::PlanWalk apart(plan::pillar_chains(sc), tie_at_20, sc, st, s);
     EXPECT_NEAR(apart.path(3, 30).at(30), 3.907529, 1e-5);
     EXPECT_EQ(apart.node_below(3, 30), -std::numeric_limits<double>::infinity());
 }
@@ -186,11 +189,8 @@ TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
 // under 0.25 x 3.010. From corner 0's top (40) the walk leaves for corner 1
 // at 20, by no bar; that is where its way down changes, as at a node.
 TEST_F(WalkScene, ATwigsNodeIsADepartureToTheStiffest) {
-    sc.columns.push_back(ring(30, 30, 0, 40, 1.0));
-    sc.columns.push_back(ring(40, 30, 0, 40, 1.4));
-    sc.columns.push_back(ring(35, 38.66, 0, 40, 0.5));
-    const std::vector<plan::BraceNode> nodes{{20, {0, 1, 2}}};
-    plan::PlanWalk walk(plan::pillar_chains(sc), nodes, sc, st, s);
+    triangle(1.0, 1.4, 0.5);
+    plan::PlanWalk walk(plan::pillar_chains(sc), tie_at_20, sc, st, s);
     const auto left = walk.departures(0, 40);
     ASSERT_EQ(left.size(), 1u);
     EXPECT_EQ(left[0].b, 1);
