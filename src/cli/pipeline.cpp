@@ -13,6 +13,7 @@
 #include <numbers>
 #include <optional>
 #include <numeric>
+#include <atomic>
 #include <thread>
 #include <vector>
 
@@ -199,21 +200,36 @@ public:
     SharedCavities(const SharedCavities&) = delete;
     SharedCavities& operator=(const SharedCavities&) = delete;
     ~SharedCavities() {
+        cancel_ = true;  // not asked for by now: not needed
         if (early_.joinable()) early_.join();
     }
     const plan::Cavities& get(const plan::Obstacles& obstacles) {
-        std::call_once(once_, [&] { cavities_.emplace(stack_, obstacles); });
+        std::call_once(once_, [&] { cavities_.emplace(stack_, obstacles, threads_); });
         return *cavities_;
     }
-    // Mapped on a thread of its own while the plan begins (the bridge
-    // search's first bar asks for them; until then the second core is
-    // mostly idle); get() waits for it. `obstacles` must outlive this.
-    void start(const plan::Obstacles& obstacles) {
+    // Mapped on threads of their own while the plan begins (the bridge
+    // search's first bar asks for them, and each plan waits there: on a
+    // plate of several objects, every thread of the plan); get() waits for
+    // it. `obstacles` must outlive this.
+    void start(const plan::Obstacles& obstacles, int threads) {
+        threads_ = threads;
         early_ = std::thread([this, &obstacles] {
             try {
                 get(obstacles);
             } catch (...) {
                 // Not mapped: the plan's own get() maps them again and throws there.
+            }
+        });
+    }
+    // Mapped from the start of the overhangs' search, on the obstacles' grid
+    // (plan::obstacle_grid): the plan of a plate of several objects waits
+    // for them in every thread at its first bar.
+    void start(layers::BitGrid grid, int threads) {
+        early_ = std::thread([this, grid = std::move(grid), threads] {
+            try {
+                std::call_once(once_, [&] { cavities_.emplace(stack_, grid, threads, &cancel_); });
+            } catch (...) {
+                // Not mapped: asked again, the plan maps them again and throws there.
             }
         });
     }
@@ -223,6 +239,8 @@ private:
     std::once_flag once_;
     std::optional<plan::Cavities> cavities_;
     std::thread early_;
+    int threads_ = 1;
+    std::atomic<bool> cancel_{false};
 };
 
 double ms_between(Clock::time_point a, Clock::time_point b) { return 1000 * std::chrono::duration<double>(b - a).count(); }
@@ -432,7 +450,8 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, kCopyWindow);
     const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads));
     SharedCavities cavities(first_copy);
-    if (settings.method == Method::Scaffold && plan::worker_count(2, threads) > 1) cavities.start(obstacles);
+    if (settings.method == Method::Scaffold && plan::worker_count(2, threads) > 1)
+        cavities.start(obstacles, plan::worker_count(2, threads));
     log.debug("the plate as the first copy sees it: {:.0f} ms", ms_between(t0, Clock::now()));
     progress.say("planning one of {} copies", n);
     GroupPlanned one = plan_group(detected, overhangs, first_copy, obstacles, settings, cavities, log, &progress,
@@ -513,14 +532,16 @@ std::vector<int> objects_of(const overhang::SupportPoints& points, const std::op
 // already built (else built here).
 GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log, Progress& progress,
-                        std::unique_ptr<const plan::Obstacles> built, const std::vector<int>& object) {
+                        std::unique_ptr<const plan::Obstacles> built, const std::vector<int>& object,
+                        SharedCavities* started) {
     const std::unique_ptr<const plan::Obstacles> obstacles = built ? std::move(built) : obstacles_of(req, stack, settings);
     std::vector<plan::PointGroup> groups =
         detected.points.empty() ? std::vector<plan::PointGroup>{}
                                 : plan::point_groups(detected, overhangs, plan::group_reach(settings), object);
-    SharedCavities cavities(stack);
-    if (settings.method == Method::Scaffold && !groups.empty() && plan::worker_count(2, req.threads) > 1)
-        cavities.start(*obstacles);
+    SharedCavities here(stack);
+    SharedCavities& cavities = started ? *started : here;
+    if (!started && settings.method == Method::Scaffold && !groups.empty() && plan::worker_count(2, req.threads) > 1)
+        here.start(*obstacles, plan::worker_count(2, req.threads));
     if (groups.size() <= 1)
         return plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, &progress,
                           plan::worker_count(plan::kMaxPlanThreads, req.threads));
@@ -735,6 +756,11 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::future<std::unique_ptr<const plan::Obstacles>> early_obstacles;
     if (!copies && settings.method != Method::None && two_threads)
         early_obstacles = std::async(std::launch::async, [&] { return obstacles_of(req, stack, settings); });
+    std::optional<SharedCavities> early_cavities;
+    if (!copies && settings.method == Method::Scaffold && two_threads) {
+        early_cavities.emplace(stack);
+        early_cavities->start(plan::obstacle_grid(stack, settings), plan::worker_count(2, req.threads));
+    }
     progress.say("finding overhangs");
     overhang::Overhangs overhangs = overhang::find_overhangs(copies ? first_copy : stack, settings);
     overhang::SupportPoints points = overhang::place_points(overhangs, copies ? first_copy : stack, settings);
@@ -767,7 +793,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     GroupPlanned planned = copied ? std::move(*copied)
                                   : plan_plate(req, points, overhangs, stack, settings, log, progress,
                                                early_obstacles.valid() ? early_obstacles.get() : nullptr,
-                                               objects_of(points, objects, frame));
+                                               objects_of(points, objects, frame),
+                                               early_cavities ? &*early_cavities : nullptr);
+    early_cavities.reset();  // done, or stopped: the stack moves next
     copied.reset();
     // Back onto the bed.
     plan::GroupPlan placed = plan::moved({std::move(planned.points), std::move(planned.scaffold)}, frame.dx(), frame.dy());

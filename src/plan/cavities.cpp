@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "layers/raster.hpp"
+#include "plan/workers.hpp"
 
 namespace scaffold::plan {
 
@@ -33,9 +34,10 @@ bool all_in(const std::uint64_t* row, int a, int b) {
 
 }  // namespace
 
-Cavities::Cavities(const layers::LayerStack& stack, const Obstacles& obstacles) {
+Cavities::Cavities(const layers::LayerStack& stack, const layers::BitGrid& grid, int threads,
+                   const std::atomic<bool>* cancel) {
     if (stack.layers.empty()) return;
-    const layers::BitGrid proto = obstacles.footprint(0).empty_like();
+    const layers::BitGrid proto = grid.empty_like();
     x0_ = proto.origin_x();
     y0_ = proto.origin_y();
     // Whole fine cells a coarse one, so a coarse cell is a run of each row.
@@ -43,68 +45,86 @@ Cavities::Cavities(const layers::LayerStack& stack, const Obstacles& obstacles) 
     cell_ = per * proto.cell();
     nx_ = static_cast<std::size_t>((proto.width() + per - 1) / per);
     ny_ = static_cast<std::size_t>((proto.height() + per - 1) / per);
-    top_.assign(nx_ * ny_, 0.0f);
     std::vector<int> order;  // the layers by rising z, without purge lines
     for (int i = 0; i < static_cast<int>(stack.layers.size()); ++i)
         if (!stack.layers[i].purge) order.push_back(i);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return stack.layers[a].z < stack.layers[b].z; });
-    states_.assign((order.size() * nx_ * ny_ * 2 + 63) / 64, 0);
-    layers::BitGrid material = proto;
-    // A coarse row's fine rows: ORed material, ANDed holes.
-    std::vector<std::uint64_t> any_material(static_cast<std::size_t>(proto.words_per_row()), 0),
-        all_holes(static_cast<std::size_t>(proto.words_per_row()), 0);
-    for (std::size_t n = 0; n < order.size(); ++n) {
-        const layers::Layer& layer = stack.layers[order[n]];
-        z_.push_back(layer.z);
-        material.clear();
-        bool any = false;
-        // The model's own beads: a skirt encloses nothing, the slicer's own
-        // support is no wall.
-        for (const layers::Segment& sg : layer.segments)
-            if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role)) {
-                material.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
-                any = true;
-            }
-        if (!any) continue;
-        // Every hole the material encloses, cavities of the model included
-        // (the obstacles' footprint fills only the part's infill holes).
-        layers::BitGrid holes = material.filled();
-        holes.subtract(material);
-        const float z = static_cast<float>(layer.z);
-        // Per coarse cell: any material, else whether every fine cell of it
-        // lies in a hole (a cell a wall runs through is no hollow): the rows
-        // of a coarse row ORed (material) and ANDed (holes), then the spans.
-        const layers::CellBox box = layers::layer_box(material, layer);
-        const int I0 = box.i0 / per, I1 = std::min(static_cast<int>(nx_) - 1, box.i1 / per);
-        const int J0 = box.j0 / per, J1 = std::min(static_cast<int>(ny_) - 1, box.j1 / per);
-        if (I1 < I0 || J1 < J0) continue;
-        const int w0 = (I0 * per) >> 6, w1 = std::min(proto.words_per_row() - 1, (I1 * per + per - 1) >> 6);
-        for (int J = J0; J <= J1; ++J) {
-            std::fill(any_material.begin() + w0, any_material.begin() + w1 + 1, 0);
-            std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, ~std::uint64_t{0});
-            for (int j = J * per; j < J * per + per; ++j) {
-                if (j >= proto.height()) {  // past the grid's last row: no hole
-                    std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, 0);
-                    break;
+    for (int i : order) z_.push_back(stack.layers[i].z);
+    const std::size_t words = (order.size() * nx_ * ny_ * 2 + 63) / 64;
+    // Each layer is mapped on its own: every thread maps every threads-th
+    // layer into maps of its own (layers share words at their ends), ORed
+    // and maxed together after: the same maps on any number of threads.
+    const int workers = std::clamp(threads, 1, static_cast<int>(std::max<std::size_t>(1, order.size())));
+    std::vector<std::vector<std::uint64_t>> states(static_cast<std::size_t>(workers));
+    std::vector<std::vector<float>> tops(static_cast<std::size_t>(workers));
+    run_workers(workers, [&](int t) {
+        std::vector<std::uint64_t>& st_out = states[static_cast<std::size_t>(t)];
+        std::vector<float>& top_out = tops[static_cast<std::size_t>(t)];
+        st_out.assign(words, 0);
+        top_out.assign(nx_ * ny_, 0.0f);
+        layers::BitGrid material = proto;
+        // A coarse row's fine rows: ORed material, ANDed holes.
+        std::vector<std::uint64_t> any_material(static_cast<std::size_t>(proto.words_per_row()), 0),
+            all_holes(static_cast<std::size_t>(proto.words_per_row()), 0);
+        for (std::size_t n = static_cast<std::size_t>(t); n < order.size(); n += static_cast<std::size_t>(workers)) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
+            const layers::Layer& layer = stack.layers[order[n]];
+            material.clear();
+            bool any = false;
+            // The model's own beads: a skirt encloses nothing, the slicer's own
+            // support is no wall.
+            for (const layers::Segment& sg : layer.segments)
+                if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role)) {
+                    material.draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
+                    any = true;
                 }
-                const std::uint64_t* m = material.row_words(j);
-                const std::uint64_t* h = holes.row_words(j);
-                for (int w = w0; w <= w1; ++w) {
-                    any_material[w] |= m[w];
-                    all_holes[w] &= h[w];
+            if (!any) continue;
+            // Every hole the material encloses, cavities of the model included
+            // (the obstacles' footprint fills only the part's infill holes).
+            layers::BitGrid holes = material.filled();
+            holes.subtract(material);
+            const float z = static_cast<float>(layer.z);
+            // Per coarse cell: any material, else whether every fine cell of it
+            // lies in a hole (a cell a wall runs through is no hollow): the rows
+            // of a coarse row ORed (material) and ANDed (holes), then the spans.
+            const layers::CellBox box = layers::layer_box(material, layer);
+            const int I0 = box.i0 / per, I1 = std::min(static_cast<int>(nx_) - 1, box.i1 / per);
+            const int J0 = box.j0 / per, J1 = std::min(static_cast<int>(ny_) - 1, box.j1 / per);
+            if (I1 < I0 || J1 < J0) continue;
+            const int w0 = (I0 * per) >> 6, w1 = std::min(proto.words_per_row() - 1, (I1 * per + per - 1) >> 6);
+            for (int J = J0; J <= J1; ++J) {
+                std::fill(any_material.begin() + w0, any_material.begin() + w1 + 1, 0);
+                std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, ~std::uint64_t{0});
+                for (int j = J * per; j < J * per + per; ++j) {
+                    if (j >= proto.height()) {  // past the grid's last row: no hole
+                        std::fill(all_holes.begin() + w0, all_holes.begin() + w1 + 1, 0);
+                        break;
+                    }
+                    const std::uint64_t* m = material.row_words(j);
+                    const std::uint64_t* h = holes.row_words(j);
+                    for (int w = w0; w <= w1; ++w) {
+                        any_material[w] |= m[w];
+                        all_holes[w] &= h[w];
+                    }
                 }
-            }
-            for (int I = I0; I <= I1; ++I) {
-                const int a = I * per, b = std::min(a + per, proto.width()) - 1;
-                const bool solid = any_in(any_material.data(), a, b);
-                if (!solid && !all_in(all_holes.data(), a, b)) continue;
-                const std::size_t cell = static_cast<std::size_t>(J) * nx_ + static_cast<std::size_t>(I);
-                const std::uint64_t st = solid ? Material : Hole;
-                const std::size_t bit = (n * nx_ * ny_ + cell) * 2;
-                states_[bit >> 6] |= st << (bit & 63);
-                if (solid && top_[cell] < z) top_[cell] = z;
+                for (int I = I0; I <= I1; ++I) {
+                    const int a = I * per, b = std::min(a + per, proto.width()) - 1;
+                    const bool solid = any_in(any_material.data(), a, b);
+                    if (!solid && !all_in(all_holes.data(), a, b)) continue;
+                    const std::size_t cell = static_cast<std::size_t>(J) * nx_ + static_cast<std::size_t>(I);
+                    const std::uint64_t st = solid ? Material : Hole;
+                    const std::size_t bit = (n * nx_ * ny_ + cell) * 2;
+                    st_out[bit >> 6] |= st << (bit & 63);
+                    if (solid && top_out[cell] < z) top_out[cell] = z;
+                }
             }
         }
+    });
+    states_ = std::move(states.front());
+    top_ = std::move(tops.front());
+    for (std::size_t t = 1; t < states.size(); ++t) {
+        for (std::size_t k = 0; k < words; ++k) states_[k] |= states[t][k];
+        for (std::size_t k = 0; k < top_.size(); ++k) top_[k] = std::max(top_[k], tops[t][k]);
     }
 }
 

@@ -5,6 +5,7 @@
 // openings. Answered on a coarse grid: per layer, whether a cell holds
 // material or lies wholly in a hole the layer's material encloses; per cell,
 // the highest material over it.
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -16,8 +17,13 @@ namespace scaffold::plan {
 
 class Cavities {
 public:
-    // From the obstacles' filled footprints (the holes their material encloses).
-    Cavities(const layers::LayerStack& stack, const Obstacles& obstacles);
+    // On the obstacles' grid (obstacle_grid, or `obstacles`' own), the
+    // layers mapped on `threads` threads (the same map). Mapping stops
+    // early, leaving a map not to be asked, once `cancel` is set.
+    Cavities(const layers::LayerStack& stack, const layers::BitGrid& grid, int threads = 1,
+             const std::atomic<bool>* cancel = nullptr);
+    Cavities(const layers::LayerStack& stack, const Obstacles& obstacles, int threads = 1)
+        : Cavities(stack, obstacles.footprint(0), threads) {}
 
     // Whether (x, y) at height z lies under model material higher up and,
     // going up from z through air, meets a layer that walls it in within

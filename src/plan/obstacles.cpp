@@ -9,14 +9,17 @@
 
 namespace scaffold::plan {
 
+layers::BitGrid obstacle_grid(const layers::LayerStack& stack, const Settings& settings) {
+    return layers::make_grid(stack, settings.resolution, 10.0);
+}
+
 // The model's footprint per layer, as Obstacles keeps it (shared by the
 // Obstacles of every thread, another()); for the layers with a skirt or
 // brim line, also the footprint without it and the line.
 std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
     const layers::LayerStack& stack, const Settings& settings, std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
     std::vector<int>& skirt_at, int threads) {
-    // The grid reaches past the print so pillars beside it can be tested too.
-    const layers::BitGrid proto = layers::make_grid(stack, settings.resolution, 10.0);
+    const layers::BitGrid proto = obstacle_grid(stack, settings);
     const std::size_t n = stack.layers.size();
     std::vector<layers::BitGrid> out(n), skirt_of(n);
     std::vector<char> has_skirt(n, 0);

@@ -96,6 +96,10 @@ private:
 // the longest lever, an elephant's column 1.93 N/mm where 2.5 was planned).
 inline constexpr double kSkirtGap = 0.1;
 
+// The grid every obstacle raster of the stack lies on (the print, and a
+// margin past it so pillars beside it can be tested too).
+layers::BitGrid obstacle_grid(const layers::LayerStack& stack, const Settings& settings);
+
 class Obstacles {
 public:
     // `threads`: rasterise the layers on that many threads (the result is the same).

@@ -138,3 +138,21 @@ TEST(Cavities, UnderALipBesideTheCabinIsOpen) {
     EXPECT_FALSE(c.bar_trapped(2, -2.5, 18, -2.5, 17));
 }
 
+
+// The layers mapped on 1, 2 or 3 threads give the same map: every answer
+// over the cabin in its hull, at every height, the same.
+TEST(Cavities, TheSameMapOnAnyNumberOfThreads) {
+    const layers::LayerStack st = cabin_in_a_hull();
+    const plan::Obstacles obs(st, Settings{});
+    const plan::Cavities one(st, obs, 1), two(st, obs, 2), three(st, obs, 3);
+    int trapped = 0;
+    for (double z = 0.1; z < 40; z += 0.5)
+        for (double y = -4; y < 19; y += 0.5)
+            for (double x = -4; x < 44; x += 0.5) {
+                const bool a = one.trapped(x, y, z, plan::Cavities::kReach);
+                trapped += a;
+                ASSERT_EQ(two.trapped(x, y, z, plan::Cavities::kReach), a) << x << " " << y << " " << z;
+                ASSERT_EQ(three.trapped(x, y, z, plan::Cavities::kReach), a) << x << " " << y << " " << z;
+            }
+    EXPECT_GT(trapped, 0);  // the cabin's hollow is in it
+}
