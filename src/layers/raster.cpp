@@ -548,6 +548,28 @@ BitGrid BitGrid::empty_like() const {
     return g;
 }
 
+BitGrid BitGrid::crop(const CellBox& box, int& i_off, int& j_off) const {
+    const CellBox c = clipped(box);
+    BitGrid g;
+    g.cell_ = cell_, g.inv_cell_ = inv_cell_;
+    if (c.empty()) {
+        i_off = j_off = 0;
+        g.ox_ = ox_, g.oy_ = oy_;
+        g.nx_ = g.ny_ = 1, g.wpr_ = 1;
+        g.words_.assign(1, 0);
+        return g;
+    }
+    const int w0 = c.i0 >> 6, w1 = c.i1 >> 6;
+    i_off = w0 * 64;
+    j_off = c.j0;
+    g.ox_ = ox_ + i_off * cell_, g.oy_ = oy_ + j_off * cell_;
+    g.nx_ = std::min(nx_, (w1 + 1) * 64) - i_off, g.ny_ = c.j1 - c.j0 + 1, g.wpr_ = w1 - w0 + 1;
+    g.words_.resize(static_cast<std::size_t>(g.wpr_) * g.ny_);
+    for (int j = 0; j < g.ny_; ++j)
+        std::copy_n(&words_[static_cast<std::size_t>(j + j_off) * wpr_ + w0], g.wpr_, &g.words_[static_cast<std::size_t>(j) * g.wpr_]);
+    return g;
+}
+
 BitGrid BitGrid::enclosed(const BitGrid& seeds) const { return enclosed(seeds, {0, 0, nx_ - 1, ny_ - 1}); }
 
 BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const { return flood_holes(seeds, box, false); }

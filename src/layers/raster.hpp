@@ -93,6 +93,10 @@ public:
     }
     const std::uint64_t* row_words(int j) const { return &words_[static_cast<std::size_t>(j) * wpr_]; }
     BitGrid empty_like() const;  // same shape, no cells set
+    // The cells of `box` (clipped), widened to whole words, as a grid of
+    // their own: its cell (i, j) is this grid's (i + i_off, j + j_off), i_off
+    // a multiple of 64. Work on a layer's box, not the whole plate's grid.
+    BitGrid crop(const CellBox& box, int& i_off, int& j_off) const;
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
 
     // Sets every cell whose centre is within width/2 of the segment.

@@ -66,10 +66,13 @@ Cavities::Cavities(const layers::LayerStack& stack, const layers::BitGrid& grid,
         // A coarse row's fine rows: ORed material, ANDed holes.
         std::vector<std::uint64_t> any_material(static_cast<std::size_t>(proto.words_per_row()), 0),
             all_holes(static_cast<std::size_t>(proto.words_per_row()), 0);
+        layers::CellBox drawn;  // what material holds
+        std::vector<std::uint64_t> hole_row(static_cast<std::size_t>(proto.words_per_row()), 0);
         for (std::size_t n = static_cast<std::size_t>(t); n < order.size(); n += static_cast<std::size_t>(workers)) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
             const layers::Layer& layer = stack.layers[order[n]];
-            material.clear();
+            material.clear(drawn);
+            drawn = {};
             bool any = false;
             // The model's own beads: a skirt encloses nothing, the slicer's own
             // support is no wall.
@@ -79,15 +82,21 @@ Cavities::Cavities(const layers::LayerStack& stack, const layers::BitGrid& grid,
                     any = true;
                 }
             if (!any) continue;
+            const layers::CellBox box = layers::layer_box(material, layer);
+            drawn = material.clipped(box);
             // Every hole the material encloses, cavities of the model included
-            // (the obstacles' footprint fills only the part's infill holes).
-            layers::BitGrid holes = material.filled();
-            holes.subtract(material);
+            // (the obstacles' footprint fills only the part's infill holes):
+            // flooded in the box and a free cell around it, which the outside
+            // reaches (the same holes as over the whole grid, for the part of
+            // a plate's grid a layer covers).
+            int i_off = 0, j_off = 0;
+            const layers::BitGrid near = material.crop(box.grown(1), i_off, j_off);
+            layers::BitGrid holes = near.filled();
+            holes.subtract(near);
             const float z = static_cast<float>(layer.z);
             // Per coarse cell: any material, else whether every fine cell of it
             // lies in a hole (a cell a wall runs through is no hollow): the rows
             // of a coarse row ORed (material) and ANDed (holes), then the spans.
-            const layers::CellBox box = layers::layer_box(material, layer);
             const int I0 = box.i0 / per, I1 = std::min(static_cast<int>(nx_) - 1, box.i1 / per);
             const int J0 = box.j0 / per, J1 = std::min(static_cast<int>(ny_) - 1, box.j1 / per);
             if (I1 < I0 || J1 < J0) continue;
@@ -101,7 +110,14 @@ Cavities::Cavities(const layers::LayerStack& stack, const layers::BitGrid& grid,
                         break;
                     }
                     const std::uint64_t* m = material.row_words(j);
-                    const std::uint64_t* h = holes.row_words(j);
+                    // The row's holes on the whole grid's words (none outside the crop).
+                    std::fill(hole_row.begin() + w0, hole_row.begin() + w1 + 1, 0);
+                    if (j >= j_off && j < j_off + holes.height()) {
+                        const std::uint64_t* src = holes.row_words(j - j_off);
+                        const int first = i_off >> 6, last = first + holes.words_per_row() - 1;
+                        for (int w = std::max(w0, first); w <= std::min(w1, last); ++w) hole_row[w] = src[w - first];
+                    }
+                    const std::uint64_t* h = hole_row.data();
                     for (int w = w0; w <= w1; ++w) {
                         any_material[w] |= m[w];
                         all_holes[w] &= h[w];

@@ -77,3 +77,34 @@ TEST(Raster, WideGridsCrossWordBoundaries) {
     for (double x = 2; x < 38.5; x += 0.7) EXPECT_TRUE(f.get(f.col(x), f.row(2))) << x;
     EXPECT_FALSE(f.get(f.col(39.8), f.row(2)));
 }
+
+// A crop holds the box's cells (widened to whole words) at its offsets, and
+// the holes filled() finds in a crop with a free cell around the material
+// are the whole grid's: two rings 12 mm apart on a 30 mm grid, one closed.
+TEST(Raster, ACropFillsAsTheWholeGridDoes) {
+    BitGrid g(0, 0, 30, 30, 0.1);
+    g.draw_segment(8, 6, 16, 6, 0.45);
+    g.draw_segment(16, 6, 16, 14, 0.45);
+    g.draw_segment(16, 14, 8, 14, 0.45);
+    g.draw_segment(8, 14, 8, 6, 0.45);    // closed
+    g.draw_segment(20, 20, 26, 20, 0.45);
+    g.draw_segment(26, 20, 26, 26, 0.45);
+    g.draw_segment(26, 26, 20, 26, 0.45);  // open on the left
+    const scaffold::layers::CellBox box{g.col(7.7), g.row(5.7), g.col(26.3), g.row(26.3)};  // the beads' cells
+    int i_off = -1, j_off = -1;
+    const BitGrid c = g.crop(box.grown(1), i_off, j_off);
+    EXPECT_EQ(i_off % 64, 0);
+    EXPECT_LE(i_off, box.i0 - 1);
+    EXPECT_EQ(j_off, box.j0 - 1);
+    EXPECT_EQ(c.count(), g.count());  // every set cell is in the crop
+    const BitGrid whole = g.filled(), part = c.filled();
+    long inside = 0;
+    for (int j = 0; j < g.height(); ++j)
+        for (int i = 0; i < g.width(); ++i) {
+            const bool in_crop = i >= i_off && i < i_off + c.width() && j >= j_off && j < j_off + c.height();
+            ASSERT_EQ(in_crop ? part.get(i - i_off, j - j_off) : g.get(i, j), whole.get(i, j)) << i << " " << j;
+            inside += whole.get(i, j) && !g.get(i, j);
+        }
+    // The closed ring's inside: about (8 - 0.45) x (8 - 0.45) mm at 0.01 mm^2 a cell.
+    EXPECT_NEAR(static_cast<double>(inside), 7.55 * 7.55 / 0.01, 200);
+}
