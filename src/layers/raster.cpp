@@ -570,6 +570,15 @@ BitGrid BitGrid::crop(const CellBox& box, int& i_off, int& j_off) const {
     return g;
 }
 
+void BitGrid::or_crop(const BitGrid& part, int i_off, int j_off) {
+    const int w0 = i_off >> 6, n = std::min(part.wpr_, wpr_ - w0);
+    for (int j = 0; j < part.ny_ && j + j_off < ny_; ++j) {
+        std::uint64_t* row = &words_[static_cast<std::size_t>(j + j_off) * wpr_ + w0];
+        const std::uint64_t* src = &part.words_[static_cast<std::size_t>(j) * part.wpr_];
+        for (int w = 0; w < n; ++w) row[w] |= src[w];
+    }
+}
+
 BitGrid BitGrid::enclosed(const BitGrid& seeds) const { return enclosed(seeds, {0, 0, nx_ - 1, ny_ - 1}); }
 
 BitGrid BitGrid::enclosed(const BitGrid& seeds, const CellBox& box) const { return flood_holes(seeds, box, false); }

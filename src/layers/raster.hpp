@@ -97,6 +97,8 @@ public:
     // their own: its cell (i, j) is this grid's (i + i_off, j + j_off), i_off
     // a multiple of 64. Work on a layer's box, not the whole plate's grid.
     BitGrid crop(const CellBox& box, int& i_off, int& j_off) const;
+    // This grid |= a crop of it (crop's offsets).
+    void or_crop(const BitGrid& part, int i_off, int j_off);
     bool same_shape(const BitGrid& o) const { return nx_ == o.nx_ && ny_ == o.ny_ && cell_ == o.cell_ && ox_ == o.ox_ && oy_ == o.oy_; }
 
     // Sets every cell whose centre is within width/2 of the segment.

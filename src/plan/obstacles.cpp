@@ -27,6 +27,7 @@ std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
     // obstacles), on `threads` threads, a layer at a time in turn.
     std::atomic<std::size_t> next{0};
     run_workers(std::max(1, std::min<int>(threads, static_cast<int>(n))), [&](int) {
+        layers::BitGrid skirt = proto, seeds = proto;  // scratch, cleared where drawn
         for (std::size_t l; (l = next.fetch_add(1)) < n;) {
             const layers::Layer& layer = stack.layers[l];
             // The part's footprint: a hole between sparse infill lines is
@@ -34,15 +35,25 @@ std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
             // open to support (layers::draw_hole_seed). A skirt or brim loop
             // encloses nothing (filled, it would wall off the whole bed
             // around the part).
-            layers::BitGrid g = proto, skirt = proto, seeds = proto;
+            layers::BitGrid g = proto;
+            const layers::CellBox box = layers::layer_box(proto, layer);
             for (const layers::Segment& sg : layer.segments) {
                 const bool is_skirt = sg.role == gcode::Role::Skirt;
                 has_skirt[l] = has_skirt[l] || is_skirt;
                 (is_skirt ? skirt : g).draw_segment(sg.x0, sg.y0, sg.x1, sg.y1, sg.width);
                 if (!is_skirt) layers::draw_hole_seed(seeds, sg);
             }
-            g |= g.holes_with(seeds);
-            if (has_skirt[l]) skirt_of[l] = std::move(skirt);
+            // The holes, flooded in the layer's box and a free cell around
+            // it, which the outside reaches (a seed outside every hole
+            // floods that much, not the whole plate's grid).
+            int i_off = 0, j_off = 0;
+            const layers::BitGrid near = g.crop(box.grown(1), i_off, j_off);
+            g.or_crop(near.holes_with(seeds.crop(box.grown(1), i_off, j_off)), i_off, j_off);
+            seeds.clear(box);
+            if (has_skirt[l]) {
+                skirt_of[l] = skirt;
+                skirt.clear(box);
+            }
             out[l] = std::move(g);
         }
     });
