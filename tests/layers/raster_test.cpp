@@ -97,6 +97,10 @@ TEST(Raster, ACropFillsAsTheWholeGridDoes) {
     EXPECT_LE(i_off, box.i0 - 1);
     EXPECT_EQ(j_off, box.j0 - 1);
     EXPECT_EQ(c.count(), g.count());  // every set cell is in the crop
+    BitGrid back = g.empty_like();
+    back.or_crop(c, i_off, j_off);  // and goes back where it came from
+    for (int j = 0; j < g.height(); ++j)
+        for (int i = 0; i < g.width(); ++i) ASSERT_EQ(back.get(i, j), g.get(i, j)) << i << " " << j;
     const BitGrid whole = g.filled(), part = c.filled();
     long inside = 0;
     for (int j = 0; j < g.height(); ++j)
