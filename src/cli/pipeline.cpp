@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,8 +13,6 @@
 #include <mutex>
 #include <numbers>
 #include <optional>
-#include <numeric>
-#include <atomic>
 #include <thread>
 #include <vector>
 
@@ -210,26 +209,17 @@ public:
     // Mapped on threads of their own while the plan begins (the bridge
     // search's first bar asks for them, and each plan waits there: on a
     // plate of several objects, every thread of the plan); get() waits for
-    // it. `obstacles` must outlive this.
-    void start(const plan::Obstacles& obstacles, int threads) {
-        threads_ = threads;
-        early_ = std::thread([this, &obstacles] {
-            try {
-                get(obstacles);
-            } catch (...) {
-                // Not mapped: the plan's own get() maps them again and throws there.
-            }
-        });
-    }
-    // Mapped from the start of the overhangs' search, on the obstacles' grid
-    // (plan::obstacle_grid): the plan of a plate of several objects waits
-    // for them in every thread at its first bar.
+    // it. Only the obstacles' grid is kept.
+    void start(const plan::Obstacles& obstacles, int threads) { start(obstacles.footprint(0).empty_like(), threads); }
+    // The same on the obstacles' grid (plan::obstacle_grid), before they are
+    // built: from the start of the overhangs' search.
     void start(layers::BitGrid grid, int threads) {
+        threads_ = threads;
         early_ = std::thread([this, grid = std::move(grid), threads] {
             try {
                 std::call_once(once_, [&] { cavities_.emplace(stack_, grid, threads, &cancel_); });
             } catch (...) {
-                // Not mapped: asked again, the plan maps them again and throws there.
+                // Not mapped: the plan's own get() maps them again and throws there.
             }
         });
     }
@@ -586,18 +576,13 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         // Groups whose plans come close (of different objects: a group's
         // plan keeps clear of the others of its own object by their reach):
         // joined, the lowest keeping its place, and planned again as one.
-        std::vector<std::size_t> into(groups.size());
-        std::iota(into.begin(), into.end(), 0);
-        auto root = [&](std::size_t g) {
-            while (into[g] != g) g = into[g];
-            return g;
-        };
+        plan::UnionFind into(groups.size());
+        auto root = [&](std::size_t g) { return static_cast<std::size_t>(into.find(static_cast<int>(g))); };
         bool any = false;
         for (std::size_t a = 0; a < groups.size(); ++a)
             for (std::size_t b = a + 1; b < groups.size(); ++b) {
-                const std::size_t ra = root(a), rb = root(b);
-                if (ra == rb || plan::plans_apart(reach[a], reach[b])) continue;
-                into[std::max(ra, rb)] = std::min(ra, rb);
+                if (root(a) == root(b) || plan::plans_apart(reach[a], reach[b])) continue;
+                into.join(static_cast<int>(a), static_cast<int>(b));
                 any = true;
             }
         if (!any) break;

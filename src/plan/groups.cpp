@@ -31,24 +31,6 @@ double group_reach(const Settings& s) {
     return std::max(bar, brace) + s.point_radius + kBranchSteer;
 }
 
-namespace {
-
-struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-    int find(int i) {
-        while (parent[i] != i) i = parent[i] = parent[parent[i]];
-        return i;
-    }
-    // The lower root stays: roots are then each group's lowest index.
-    void join(int a, int b) {
-        a = find(a);
-        b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
-}  // namespace
 
 std::vector<PointGroup> point_groups(const overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
                                      double reach, const std::vector<int>& object) {

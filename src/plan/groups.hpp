@@ -5,7 +5,9 @@
 // its own rounds, on several threads; the plans are merged in group order,
 // so the plan is the same for any thread count.
 #include <cstddef>
+#include <algorithm>
 #include <functional>
+#include <numeric>
 #include <utility>
 #include <vector>
 
@@ -15,6 +17,22 @@
 #include "plan/scaffold.hpp"
 
 namespace scaffold::plan {
+
+// Union-find over 0..n-1 in which the lower root stays: each set's root
+// is its lowest index (groups keep the order of their lowest member).
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    }
+    void join(int a, int b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
 
 // Points farther apart than this (in XY) are never joined by one thing the
 // planner builds, nor affect each other's plan. See groups.cpp for the sum.
