@@ -795,7 +795,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
         gcode::write_text_file(it->second, toolpath::preview_svg(stack, scaffold, paths, settings));
     for (layers::Layer& layer : stack.layers) std::vector<layers::Segment>().swap(layer.segments);  // drawn for the last time
     progress.say("writing the support into the G-code");
-    splice::SpliceResult spliced = splice::splice(program, stack, paths, settings);
+    splice::SpliceResult spliced = splice::splice(program, stack, paths, settings, plan::worker_count(2, req.threads));
     time.lap("splice");
 
     std::size_t pillars = 0;

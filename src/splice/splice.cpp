@@ -1,6 +1,7 @@
 #include "splice/splice.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
 #include "gcode/role.hpp"
+#include "plan/workers.hpp"
 
 namespace scaffold::splice {
 
@@ -126,13 +128,15 @@ double move_seconds(double d, double v, double accel) {
 // Writes one layer's block, starting and ending in the saved state.
 class BlockWriter {
 public:
-    BlockWriter(const gcode::MachineState& saved, const Settings& s, const layers::Layer& layer, bool fw_retraction,
-                const RoleWords& roles, std::string_view restore_width, std::string_view restore_height,
-                const layers::BedMesh* mesh, double accel)
+    BlockWriter(const gcode::MachineState& saved, const Settings& s, double z, double height, bool fw_retraction,
+                std::string_view support_role, std::string_view restore_role, std::string_view restore_width,
+                std::string_view restore_height, const layers::BedMesh* mesh, double accel)
         // Retract the way the slicer did at this point: filament pulled back
         // by E is given back by E, whatever else the file does elsewhere.
-        : saved_(saved), s_(s), layer_(layer), fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)),
-          roles_(roles), restore_width_(restore_width), restore_height_(restore_height), mesh_(mesh), accel_(accel) {
+        : saved_(saved), s_(s), z_layer_(z), height_(height),
+          fw_(saved.fw_retracted || (fw_retraction && saved.retracted_mm <= 1e-4)), support_role_(support_role),
+          restore_role_(restore_role), restore_width_(restore_width), restore_height_(restore_height), mesh_(mesh),
+          accel_(accel) {
         // Retract by what the slicer retracted, so its own unretract stays right.
         amount_ = saved.retracted_mm > 1e-4 ? saved.retracted_mm : s.retract_length;
         e_ = saved.e;
@@ -145,12 +149,12 @@ public:
 
     std::string write(const std::vector<toolpath::Path>& paths) {
         out_ += "; scaffold: support for the layer at";
-        num(out_, 'Z', layer_.z, 3);
+        num(out_, 'Z', z_layer_, 3);
         out_ += "\n";
-        out_ += roles_.support();
+        out_ += support_role_;
         out_ += "\n";
-        const bool say_height = !restore_height_.empty() && std::abs(said_value(restore_height_) - layer_.height) > 5e-4;
-        if (say_height) say(restore_height_, layer_.height);
+        const bool say_height = !restore_height_.empty() && std::abs(said_value(restore_height_) - height_) > 5e-4;
+        if (say_height) say(restore_height_, height_);
         for (const toolpath::Path& p : paths) path(p);
         retract();
         travel(saved_.x, saved_.y, std::max(saved_.z, floor_z_));
@@ -166,7 +170,7 @@ public:
             out_ += "\n";
         }
         if (fan_changed_) out_ += saved_.fan > 0 ? "M106 S" + std::to_string(saved_.fan) + "\n" : std::string("M107\n");
-        out_ += roles_.restore();
+        out_ += restore_role_;
         out_ += "\n";
         if (width_said_) {
             out_ += restore_width_;
@@ -269,6 +273,10 @@ private:
             if (auto it = near_.find(cell_key(cell_of(px), cell_of(py))); it != near_.end())
                 for (std::uint32_t k : it->second) {
                     const Bead& b = printed_[k];
+                    // The exact distance only where the squared one (with
+                    // room for rounding) says it may lower the gap.
+                    const double reach = gap + b.width / 2 + 1e-6;
+                    if (reach <= 0 || squared_distance_to_segment(px, py, b) > reach * reach) continue;
                     gap = std::min(gap, distance_to_segment(px, py, b) - b.width / 2);
                 }
             widest = std::max(widest, gap);
@@ -297,6 +305,13 @@ private:
         for (long i = cell_of(std::min(b.x0, b.x1) - r); i <= cell_of(std::max(b.x0, b.x1) + r); ++i)
             for (long j = cell_of(std::min(b.y0, b.y1) - r); j <= cell_of(std::max(b.y0, b.y1) + r); ++j)
                 near_[cell_key(i, j)].push_back(k);
+    }
+
+    static double squared_distance_to_segment(double px, double py, const Bead& b) {
+        const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
+        const double t = std::clamp(l2 > 0 ? ((px - b.x0) * dx + (py - b.y0) * dy) / l2 : 0.0, 0.0, 1.0);
+        const double ex = px - (b.x0 + dx * t), ey = py - (b.y0 + dy * t);
+        return ex * ex + ey * ey;
     }
 
     static double distance_to_segment(double px, double py, const Bead& b) {
@@ -345,7 +360,7 @@ private:
             const auto& b = p.points[i];
             double len = std::hypot(b.x - x_, b.y - y_);
             if (len < 1e-6) continue;
-            double de = filament_for(len, p.width, layer_.height, s_.filament_diameter);
+            double de = filament_for(len, p.width, height_, s_.filament_diameter);
             out_ += "G1";
             num(out_, 'X', b.x, 3);
             num(out_, 'Y', b.y, 3);
@@ -396,13 +411,14 @@ private:
 
     // The layer's height where the nozzle is; with bed levelling baked into
     // the file, the model's Z follows the bed's mesh and the support with it.
-    double z_at(double x, double y) const { return layer_.z + (mesh_ ? mesh_->at(x, y) : 0.0); }
+    double z_at(double x, double y) const { return z_layer_ + (mesh_ ? mesh_->at(x, y) : 0.0); }
 
     const gcode::MachineState& saved_;
     const Settings& s_;
-    const layers::Layer& layer_;
+    double z_layer_, height_;  // the block's layer
     bool fw_;
-    const RoleWords& roles_;
+    std::string_view support_role_;  // the line that names the support, and the one that gives the slicer's role back
+    std::string_view restore_role_;
     std::string_view restore_width_;   // the slicer's last width comment line, or empty
     std::string_view restore_height_;  // the slicer's last height comment line, or empty
     bool width_said_ = false;
@@ -522,60 +538,116 @@ std::uint32_t layer_reached(const gcode::Program& p, gcode::MachineState st, std
 }  // namespace
 
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
-                    const toolpath::SupportPaths& paths, const Settings& settings) {
+                    const toolpath::SupportPaths& paths, const Settings& settings, int threads) {
     SpliceResult result;
-    // One pass of the machine over the file, pausing at each insertion point.
-    gcode::MachineState st;
-    st.absolute_e = !program.relative_e_at_start;
-    gcode::Command cmd;
-    std::vector<gcode::Move> scratch;
-    RoleWords roles(program.dialect);
-    std::string last_width, last_height;
-    std::uint32_t line = 0;
-    std::uint64_t released = 0;  // text before this was lexed and released
-    bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
-    std::int64_t open = -1;  // line that opened the labelled block open at `line`
+    // What each layer's block is written from, found in one pass of the
+    // machine over the file, pausing at each insertion point; each block is
+    // written (from that alone: the same text on any number of threads) by
+    // another thread as soon as its place is found, and by the pass's own
+    // once it is done.
+    struct Block {
+        gcode::MachineState st;
+        std::string support_role, restore_role, width, height;
+        std::uint32_t at = 0;
+        double z = 0, height_mm = 0;
+        std::string text;
+        double filament = 0, length = 0, seconds = 0;
+    };
+    const std::size_t n = paths.layers.size();
+    std::vector<Block> blocks(n);
+    std::atomic<std::size_t> found{0}, next{0};  // blocks whose place is found; the next to write
+    std::atomic<bool> failed{false};
+    const bool fw = settings.firmware_retraction || program.saw_firmware_retraction;
     const double accel = planned_acceleration(program);
-    for (const toolpath::LayerPaths& lp : paths.layers) {
-        const layers::Layer& layer = stack.layers[lp.layer];
-        // A bond goes in once the nozzle has risen to the layer (it then
-        // descends to the bond and rises again, never over printed model),
-        // before the layer's first extrusion; its block is written at its
-        // own height.
-        const std::uint32_t meant = lp.bond() ? layer_reached(program, st, line, layer) : layer.end_line;
-        layers::Layer bond;
-        if (lp.bond()) {
-            bond.z = lp.bond_z;
-            bond.height = lp.bond_height;
-        }
-        std::uint32_t at = std::max(line, outside_blocks(program, line, meant, open, result.blocks_split));
-        for (; line < at && line < program.lines.size(); ++line) {
-            std::string_view text = program.line_text(line);
-            gcode::lex(text, cmd);
-            if (cmd.letter == 0) {
-                const std::string_view said = text.substr(0, text.find_last_not_of(" \t\r") + 1);
-                roles.see(said);
-                if (is_width_comment(said)) last_width = said;
-                else if (is_height_comment(said)) last_height = said;
-                continue;
+    auto find_places = [&] {
+        gcode::MachineState st;
+        st.absolute_e = !program.relative_e_at_start;
+        gcode::Command cmd;
+        std::vector<gcode::Move> scratch;
+        RoleWords roles(program.dialect);
+        std::string last_width, last_height;
+        std::uint32_t line = 0;
+        std::uint64_t released = 0;  // text before this was lexed and released
+        std::int64_t open = -1;      // line that opened the labelled block open at `line`
+        for (std::size_t i = 0; i < n; ++i) {
+            const toolpath::LayerPaths& lp = paths.layers[i];
+            const layers::Layer& layer = stack.layers[lp.layer];
+            // A bond goes in once the nozzle has risen to the layer (it then
+            // descends to the bond and rises again, never over printed
+            // model), before the layer's first extrusion; its block is
+            // written at its own height.
+            const std::uint32_t meant = lp.bond() ? layer_reached(program, st, line, layer) : layer.end_line;
+            std::uint32_t at = std::max(line, outside_blocks(program, line, meant, open, result.blocks_split));
+            for (; line < at && line < program.lines.size(); ++line) {
+                std::string_view text = program.line_text(line);
+                gcode::lex(text, cmd);
+                if (cmd.letter == 0) {
+                    const std::string_view said = text.substr(0, text.find_last_not_of(" \t\r") + 1);
+                    roles.see(said);
+                    if (is_width_comment(said)) last_width = said;
+                    else if (is_height_comment(said)) last_height = said;
+                    continue;
+                }
+                scratch.clear();
+                gcode::step(st, cmd, line, scratch);
             }
-            scratch.clear();
-            gcode::step(st, cmd, line, scratch);
+            // A huge file stays resident only a layer at a time.
+            std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
+            program.text.release(released, upto);
+            released = upto;
+            Block& b = blocks[i];
+            b.st = st;
+            b.support_role = roles.support();
+            b.restore_role = roles.restore();
+            b.width = last_width;
+            b.height = last_height;
+            b.at = at;
+            b.z = lp.bond() ? lp.bond_z : layer.z;
+            b.height_mm = lp.bond() ? lp.bond_height : layer.height;
+            found.store(i + 1, std::memory_order_release);
+            found.notify_all();
         }
-        // A huge file stays resident only a layer at a time.
-        std::uint64_t upto = line < program.lines.size() ? program.lines[line].offset : program.text.size();
-        program.text.release(released, upto);
-        released = upto;
-        BlockWriter w(st, settings, lp.bond() ? bond : layer, fw, roles, last_width, last_height,
-                      stack.mesh.empty() ? nullptr : &stack.mesh, accel);
-        if (lp.bond()) w.stay_above(lp.bond_z);
+    };
+    auto write_blocks = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < n;) {
+            for (std::size_t f; (f = found.load(std::memory_order_acquire)) <= i;) {
+                if (failed.load()) return;
+                found.wait(f, std::memory_order_acquire);
+            }
+            if (failed.load()) return;
+            Block& b = blocks[i];
+            const toolpath::LayerPaths& lp = paths.layers[i];
+            BlockWriter w(b.st, settings, b.z, b.height_mm, fw, b.support_role, b.restore_role, b.width, b.height,
+                          stack.mesh.empty() ? nullptr : &stack.mesh, accel);
+            if (lp.bond()) w.stay_above(lp.bond_z);
+            b.text = w.write(lp.paths);
+            b.filament = w.filament();
+            b.length = w.length();
+            b.seconds = w.seconds();
+        }
+    };
+    plan::run_workers(std::max(1, std::min(threads, static_cast<int>(n))), [&](int worker) {
+        if (worker == 0) {
+            try {
+                find_places();
+            } catch (...) {
+                // Nothing more will be found: the writers waiting stop.
+                failed.store(true);
+                found.store(n + 1, std::memory_order_release);
+                found.notify_all();
+                throw;
+            }
+        }
+        write_blocks();
+    });
+    for (Block& b : blocks) {
+        result.filament_mm += b.filament;
+        result.extruded_length_mm += b.length;
+        result.block_seconds.push_back(b.seconds);
+        result.seconds += b.seconds;
         gcode::Edit e;
-        e.line = at;
-        e.text = w.write(lp.paths);
-        result.filament_mm += w.filament();
-        result.extruded_length_mm += w.length();
-        result.block_seconds.push_back(w.seconds());
-        result.seconds += w.seconds();
+        e.line = b.at;
+        e.text = std::move(b.text);
         result.edits.push_back(std::move(e));
         ++result.layers_touched;
     }

@@ -28,8 +28,9 @@ struct SpliceResult {
     std::size_t blocks_split = 0;
 };
 
+// The blocks are written on `threads` threads (the same text on any number).
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
-                    const toolpath::SupportPaths& paths, const Settings& settings);
+                    const toolpath::SupportPaths& paths, const Settings& settings, int threads = 1);
 
 // Filament (mm) for a bead of this length, width and height.
 double filament_for(double length, double width, double height, double filament_diameter);

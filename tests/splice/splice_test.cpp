@@ -404,3 +404,37 @@ TEST(Splice, SaysTheSupportsHeightWhereTheLastSaidIsAnother) {
         }
     }
 }
+
+// Each block is written from what the pass over the file found at its
+// place: the same edits, filament and times on any number of threads.
+TEST(Splice, TheSameBlocksOnAnyNumberOfThreads) {
+    gcode::Program in = gcode::parse(tower("M83", false, 0.4), "in");
+    Settings s = build_settings(in, {}, {});
+    layers::LayerStack stack = layers::build_layers(in, s);
+    plan::Scaffold sc = one_pillar(5);
+    plan::Column other = sc.columns.front();
+    other.y0 = other.y1 = 90;
+    other.z1 = 0.6;
+    sc.columns.push_back(other);
+    const auto paths = toolpath::make_paths(sc, stack, s);
+    ASSERT_EQ(paths.layers.size(), 5u);
+    const splice::SpliceResult one = splice::splice(in, stack, paths, s, 1);
+    ASSERT_EQ(one.edits.size(), 5u);
+    for (int threads : {2, 3, 8}) {
+        SCOPED_TRACE(threads);
+        const splice::SpliceResult many = splice::splice(in, stack, paths, s, threads);
+        ASSERT_EQ(many.edits.size(), one.edits.size());
+        for (std::size_t i = 0; i < one.edits.size(); ++i) {
+            EXPECT_EQ(many.edits[i].line, one.edits[i].line);
+            EXPECT_EQ(many.edits[i].text, one.edits[i].text);
+            EXPECT_EQ(many.block_seconds[i], one.block_seconds[i]);
+        }
+        EXPECT_EQ(many.filament_mm, one.filament_mm);
+        EXPECT_EQ(many.seconds, one.seconds);
+        EXPECT_EQ(many.layers_touched, 5);
+    }
+    // Each block starts where the layer's own moves end and restores the
+    // machine as it found it: the relative-E tower's model moves unchanged.
+    gcode::Program out = gcode::parse(render(in, one.edits), "out");
+    EXPECT_EQ(model_moves(out).size(), in.moves.size());
+}
