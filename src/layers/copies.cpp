@@ -1,8 +1,10 @@
 #include "layers/copies.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <unordered_map>
 
 #include "gcode/role.hpp"
@@ -99,11 +101,11 @@ bool same_beads(const LayerStack& stack, const Object& a, const Object& b) {
 
 }  // namespace
 
-std::optional<Copies> find_copies(const LayerStack& stack, std::string* why) {
-    return find_copies(stack, ObjectMap(stack), why);
+std::optional<Copies> find_copies(const LayerStack& stack, std::string* why, int threads) {
+    return find_copies(stack, ObjectMap(stack), why, threads);
 }
 
-std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why) {
+std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why, int threads) {
     auto no = [why](std::string reason) -> std::optional<Copies> {
         if (why) *why = std::move(reason);
         return std::nullopt;
@@ -140,13 +142,26 @@ std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map,
     Copies out;
     out.prototype = first.box;
     out.beads = first.beads;
-    for (std::size_t k : order) {
-        const Object& o = objects[k];
-        if (&o != &first && !same_beads(stack, first, o))
-            return no("object " + std::to_string(out.offsets.size() + 1) + " of " + std::to_string(objects.size()) +
-                      " is no exact copy of the first");
-        out.offsets.push_back({o.ax - first.ax, o.ay - first.ay});
+    // Each object against the first, on `threads` threads; past the lowest
+    // that differs none is asked (that one is named, whatever the threads).
+    std::atomic<std::size_t> next{1}, differs{order.size()};
+    auto compare = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < order.size();) {
+            if (i > differs.load()) break;
+            if (same_beads(stack, first, objects[order[i]])) continue;
+            for (std::size_t d = differs.load(); i < d && !differs.compare_exchange_weak(d, i);) {
+            }
+        }
+    };
+    {
+        std::vector<std::jthread> helpers;
+        for (int t = 1; t < std::min<int>(threads, static_cast<int>(order.size()) - 1); ++t) helpers.emplace_back(compare);
+        compare();
     }
+    if (differs.load() < order.size())
+        return no("object " + std::to_string(differs.load() + 1) + " of " + std::to_string(objects.size()) +
+                  " is no exact copy of the first");
+    for (std::size_t k : order) out.offsets.push_back({objects[k].ax - first.ax, objects[k].ay - first.ay});
     return out;
 }
 

@@ -40,9 +40,12 @@ inline constexpr double kCopyTolerance = 0.003;
 // objects, each an exact copy of the first (lowest, then leftmost). Skirts,
 // wipe towers and purge lines belong to no copy; a file holding support of
 // its own is no plate of copies. `why` (optional) says why not, for the log.
-std::optional<Copies> find_copies(const LayerStack& stack, std::string* why = nullptr);
+// The objects are compared with the first on `threads` threads (the same
+// answer on any number).
+std::optional<Copies> find_copies(const LayerStack& stack, std::string* why = nullptr, int threads = 1);
 // The same with the plate's objects already found (ObjectMap of `stack`).
-std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why = nullptr);
+std::optional<Copies> find_copies(const LayerStack& stack, const ObjectMap& map, std::string* why = nullptr,
+                                  int threads = 1);
 
 // The first copy alone: its beads (nothing else), the same layers
 // (heights, order) as `stack`, its box as bounds.

@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
 
 // Boost.Geometry's rescaling trips GCC's maybe-uninitialized analysis.
 #pragma GCC diagnostic push
@@ -583,6 +587,83 @@ std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, 
     for (int side : {-1, 1}) {
         Point a{br.x0 - ex + side * nx, br.y0 - ey + side * ny}, b{br.x1 + ex + side * nx, br.y1 + ey + side * ny};
         out.push_back(side < 0 ? std::vector<Point>{a, b} : std::vector<Point>{b, a});
+    }
+    return out;
+}
+
+std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
+                                         const TravelClear& clear) {
+    // Where the copy's paths pass, over all layers: every bead sampled at
+    // most kStep apart, each sample kept as the centre of its kCell square,
+    // once. Every point of a bead's centre line lies within kStep / 2 + the
+    // square's half diagonal of a centre kept.
+    constexpr double kCell = 0.25, kStep = 0.25;
+    const double slack = kStep / 2 + kCell * std::numbers::sqrt2 / 2;
+    auto cell = [](double v, double size) { return static_cast<long>(std::floor(v / size)); };
+    auto key = [](long i, long j) { return (static_cast<std::uint64_t>(i) << 32) ^ static_cast<std::uint32_t>(j); };
+    std::unordered_set<std::uint64_t> seen;
+    std::vector<Point> centres;
+    double widest = 0;
+    for (const LayerPaths& lp : one.layers)
+        for (const Path& p : lp.paths) {
+            widest = std::max(widest, p.width);
+            for (std::size_t k = 0; k < p.points.size(); ++k) {
+                const Point& a = p.points[k];
+                const Point& b = p.points[k + 1 < p.points.size() ? k + 1 : k];
+                const int n = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / kStep)));
+                for (int t = 0; t <= n; ++t) {
+                    const double x = a.x + (b.x - a.x) * t / n, y = a.y + (b.y - a.y) * t / n;
+                    const long i = cell(x, kCell), j = cell(y, kCell);
+                    if (seen.insert(key(i, j)).second)
+                        centres.push_back({(static_cast<double>(i) + 0.5) * kCell, (static_cast<double>(j) + 0.5) * kCell});
+                }
+            }
+        }
+    // Two copies' beads (edges) at least `apart` mm apart: their centres
+    // farther than `reach` from each other. Looked up in squares of that size.
+    const double reach = apart + widest + 2 * slack;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_square;
+    for (std::uint32_t k = 0; k < centres.size(); ++k)
+        by_square[key(cell(centres[k].x, reach), cell(centres[k].y, reach))].push_back(k);
+    auto meet = [&](double dx, double dy) {
+        for (const Point& c : centres) {
+            const double x = c.x + dx, y = c.y + dy;
+            const long i = cell(x, reach), j = cell(y, reach);
+            for (long di = -1; di <= 1; ++di)
+                for (long dj = -1; dj <= 1; ++dj) {
+                    auto it = by_square.find(key(i + di, j + dj));
+                    if (it == by_square.end()) continue;
+                    for (std::uint32_t k : it->second)
+                        if (std::hypot(centres[k].x - x, centres[k].y - y) <= reach) return true;
+                }
+        }
+        return false;
+    };
+    for (std::size_t a = 0; a < offsets.size(); ++a)
+        for (std::size_t b = a + 1; b < offsets.size(); ++b)
+            if (meet(offsets[b].x - offsets[a].x, offsets[b].y - offsets[a].y)) return std::nullopt;
+    SupportPaths out;
+    out.layers.reserve(one.layers.size());
+    for (const LayerPaths& lp : one.layers) {
+        LayerPaths& m = out.layers.emplace_back();
+        m.layer = lp.layer;
+        m.bond_z = lp.bond_z;
+        m.bond_height = lp.bond_height;
+        m.paths.reserve(lp.paths.size() * offsets.size());
+        for (const Point& o : offsets) {
+            const std::size_t first = m.paths.size();
+            for (const Path& p : lp.paths) {
+                Path& q = m.paths.emplace_back(p);
+                for (Point& pt : q.points) {
+                    pt.x += o.x;
+                    pt.y += o.y;
+                }
+            }
+            if (first > 0 && first < m.paths.size())
+                m.paths[first].retract =
+                    !clear || !clear(lp.layer, m.paths[first - 1].points.back(), m.paths[first].points.front(),
+                                     m.paths[first].width);
+        }
     }
     return out;
 }

@@ -3,6 +3,7 @@
 // (tapered tips, flared feet), raft squares on the first layer, and bridge
 // lines. Plain geometry with width, height and speed; splice/ writes G-code.
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -77,6 +78,16 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
 using TravelClear = std::function<bool(int layer, const Point& a, const Point& b, double width)>;
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
                         const TravelClear& clear);
+
+// Copies of one plan (a plate's exact copies): `one`'s paths moved by each
+// offset ((0, 0) first), each layer printing copy after copy in the
+// offsets' order, the travel from one copy to the next asked of `clear`.
+// The same paths make_paths gives the copies' plans together, but for
+// their order, only where no two copies' paths (their widths included)
+// come within `apart` mm of each other, so no loop, raft, bond or spur of
+// one meets another's: else nullopt.
+std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
+                                         const TravelClear& clear);
 
 // The two side-by-side lines of a bar's layer, in printing order, each
 // reaching half a pillar radius past the bar's ends into the pillar tops.

@@ -140,3 +140,35 @@ TEST(Copies, TheFirstSeesANeighbourOnEachSideItHasFromAnyCopy) {
     // Each moved bead once, however many copies see it there.
     EXPECT_EQ(seen.layers[3].segments.size(), 3u * 5u);
 }
+
+// The objects are compared with the first on several threads: the same
+// copies, and where two differ the same one named (the lowest), on any
+// number of threads.
+TEST(Copies, TheSameAnswerOnAnyNumberOfThreads) {
+    auto row = [](std::vector<int> differing) {
+        return test::stack_of(
+            4,
+            [&](int, layers::Layer& l) {
+                for (int k = 0; k < 6; ++k)
+                    box(l, 10 + 15 * k, 20.25, std::count(differing.begin(), differing.end(), k) ? 0.5 : 0);
+            },
+            {0, 0, 200, 60});
+    };
+    const layers::LayerStack same = row({});
+    const auto one = layers::find_copies(same, nullptr, 1);
+    ASSERT_TRUE(one.has_value());
+    ASSERT_EQ(one->offsets.size(), 6u);
+    const layers::LayerStack differ = row({3, 5});
+    for (int threads : {1, 2, 3, 8}) {
+        SCOPED_TRACE(threads);
+        const auto many = layers::find_copies(same, nullptr, threads);
+        ASSERT_TRUE(many.has_value());
+        for (std::size_t k = 0; k < 6; ++k) {
+            EXPECT_EQ(many->offsets[k].dx, one->offsets[k].dx);
+            EXPECT_EQ(many->offsets[k].dy, one->offsets[k].dy);
+        }
+        std::string why;
+        EXPECT_FALSE(layers::find_copies(differ, &why, threads).has_value());
+        EXPECT_EQ(why, "object 4 of 6 is no exact copy of the first");
+    }
+}

@@ -387,3 +387,91 @@ TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
     for (const auto& p : lp->paths.front().points) far = std::max(far, std::hypot(p.x - 30.1, p.y - 30));
     EXPECT_NEAR(far, plan::loop_shape(1.3, s.support_width).centre_radius, 1e-9);
 }
+
+namespace {
+
+// Each layer's paths as text, in a fixed order (order aside).
+std::vector<std::string> layer_shapes(const toolpath::SupportPaths& p) {
+    std::vector<std::string> out;
+    for (const auto& lp : p.layers)
+        for (const auto& path : lp.paths) {
+            std::string t = std::to_string(lp.layer) + " " + std::to_string(static_cast<int>(path.kind)) + ":";
+            for (const auto& q : path.points) t += std::to_string(std::lround(q.x * 1e4)) + "," + std::to_string(std::lround(q.y * 1e4)) + " ";
+            out.push_back(std::move(t));
+        }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+}  // namespace
+
+// A plate's exact copies print one copy's paths moved, copy after copy on
+// each layer: the paths make_paths gives the copies' plans together, and the
+// travel from one copy to the next retracts as `clear` says.
+TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold one;
+    one.columns = {pillar(20, 20, 5), pillar(30, 20, 5)};
+    plan::Bridge bar;
+    bar.x0 = 20, bar.y0 = 20, bar.x1 = 30, bar.y1 = 20, bar.z = 5;
+    one.bridges = {bar};
+    const toolpath::SupportPaths paths = toolpath::make_paths(one, st, s);
+    ASSERT_FALSE(paths.layers.empty());
+    // Two copies 25 mm apart along y: 22.55 mm between their beads.
+    const std::vector<toolpath::Point> offsets{{0, 0}, {0, 25}};
+    int asked = 0;
+    const auto copied = toolpath::copied_paths(paths, offsets, 1.0, [&](int, const toolpath::Point& a, const toolpath::Point& b, double) {
+        ++asked;
+        EXPECT_LT(a.y, 22);  // from the first copy
+        EXPECT_GT(b.y, 40);  // to the second
+        return false;
+    });
+    ASSERT_TRUE(copied.has_value());
+    ASSERT_EQ(copied->layers.size(), paths.layers.size());
+    EXPECT_EQ(asked, static_cast<int>(paths.layers.size()));  // once a layer: every layer has paths
+    for (std::size_t i = 0; i < paths.layers.size(); ++i) {
+        const auto& a = paths.layers[i];
+        const auto& m = copied->layers[i];
+        EXPECT_EQ(m.layer, a.layer);
+        ASSERT_EQ(m.paths.size(), 2 * a.paths.size());
+        for (std::size_t k = 0; k < a.paths.size(); ++k) {
+            const auto& p = a.paths[k];
+            const auto& q0 = m.paths[k];
+            const auto& q1 = m.paths[a.paths.size() + k];
+            ASSERT_EQ(q1.points.size(), p.points.size());
+            EXPECT_EQ(q0.points.front().y, p.points.front().y);
+            EXPECT_NEAR(q1.points.front().x, p.points.front().x, 1e-12);
+            EXPECT_NEAR(q1.points.back().y, p.points.back().y + 25, 1e-12);
+            EXPECT_EQ(q1.retract, k == 0 ? true : p.retract);  // clear said no: the travel between copies retracts
+        }
+    }
+    // The same paths, order aside, as the two copies' plans made together.
+    plan::Scaffold both = one;
+    for (plan::Column c : one.columns) {
+        c.y0 += 25, c.y1 += 25;
+        both.columns.push_back(c);
+    }
+    bar.y0 += 25, bar.y1 += 25;
+    both.bridges.push_back(bar);
+    EXPECT_EQ(layer_shapes(*copied), layer_shapes(toolpath::make_paths(both, st, s)));
+    // A travel between copies that clear lets go unretracted.
+    const auto free = toolpath::copied_paths(paths, offsets, 1.0, [](int, const auto&, const auto&, double) { return true; });
+    ASSERT_TRUE(free.has_value());
+    EXPECT_FALSE(free->layers.front().paths[paths.layers.front().paths.size()].retract);
+}
+
+// Copies whose supports come within `apart` of each other are no copies
+// for this: their loops may merge, retrace or hold each other's spurs.
+TEST(SupportPaths, CopiesWhoseSupportsMeetAreNotMoved) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold one;
+    one.columns = {pillar(20, 20, 5)};
+    const toolpath::SupportPaths paths = toolpath::make_paths(one, st, s);
+    // Loops 2 mm wide: 2.5 mm apart leaves 0.5 mm between the beads.
+    EXPECT_FALSE(toolpath::copied_paths(paths, {{0, 0}, {2.5, 0}}, 1.0, {}).has_value());
+    EXPECT_FALSE(toolpath::copied_paths(paths, {{0, 0}, {30, 30}, {31.5, 32}}, 1.0, {}).has_value());
+    // 5 mm apart leaves 3 mm: moved.
+    EXPECT_TRUE(toolpath::copied_paths(paths, {{0, 0}, {5, 0}}, 1.0, {}).has_value());
+}
