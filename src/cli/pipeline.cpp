@@ -63,6 +63,9 @@ constexpr double kCopyReach = 10.0;
 // included) print the first copy's paths moved: no loop, raft, bond or spur
 // of one reaches another's.
 constexpr double kCopiesApart = 1.0;
+// mm over a plate of copies' highest point from which the plate as its
+// first copy sees it is taken as solid, not drawn.
+constexpr double kSolidAbove = 2.0;
 // mm: a point is its object's within this of its footprint.
 constexpr double kPointObjectReach = 1.0;
 // Points: groups this large (a whole object's) each take a thread at once.
@@ -442,7 +445,11 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     const layers::Bounds first = copies.prototype;
     const Clock::time_point t0 = Clock::now();
     const layers::LayerStack seen = layers::seen_from_every_copy(stack, copies, kCopyWindow);
-    const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads));
+    // Drawn only up to a little over the highest point: the plan stays under
+    // its points, and anything asked above is refused.
+    double top = 0;
+    for (const overhang::SupportPoint& p : detected.points) top = std::max(top, first_copy.layers[p.layer].z);
+    const plan::Obstacles obstacles(seen, settings, plan::worker_count(seen.layers.size(), threads), top + kSolidAbove);
     SharedCavities cavities(first_copy);
     if (settings.method == Method::Scaffold && plan::worker_count(2, threads) > 1)
         cavities.start(obstacles, plan::worker_count(2, threads));

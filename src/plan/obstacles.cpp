@@ -18,7 +18,7 @@ layers::BitGrid obstacle_grid(const layers::LayerStack& stack, const Settings& s
 // brim line, also the footprint without it and the line.
 std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
     const layers::LayerStack& stack, const Settings& settings, std::shared_ptr<const std::vector<SkirtLayer>>& skirts,
-    std::vector<int>& skirt_at, int threads) {
+    std::vector<int>& skirt_at, int threads, double solid_above) {
     const layers::BitGrid proto = obstacle_grid(stack, settings);
     const std::size_t n = stack.layers.size();
     std::vector<layers::BitGrid> out(n), skirt_of(n);
@@ -36,6 +36,11 @@ std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
             // encloses nothing (filled, it would wall off the whole bed
             // around the part).
             layers::BitGrid g = proto;
+            if (layer.z > solid_above) {
+                for (int j = 0; j < g.height(); ++j) g.set_row_span(j, 0, g.width() - 1);
+                out[l] = std::move(g);
+                continue;
+            }
             const layers::CellBox box = layers::layer_box(proto, layer);
             for (const layers::Segment& sg : layer.segments) {
                 const bool is_skirt = sg.role == gcode::Role::Skirt;
@@ -69,9 +74,9 @@ std::shared_ptr<const std::vector<layers::BitGrid>> Obstacles::model_rasters(
     return std::make_shared<const std::vector<layers::BitGrid>>(std::move(out));
 }
 
-Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads)
+Obstacles::Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads, double solid_above)
     : inflate(settings.support_width + settings.xy_gap),
-      shared_model_(model_rasters(stack, settings, shared_skirts_, skirt_at_, threads)),
+      shared_model_(model_rasters(stack, settings, shared_skirts_, skirt_at_, threads, solid_above)),
       model_(*shared_model_) {
     skirt_relief_ = std::max(0.0, settings.xy_gap - kSkirtGap);
     z_.reserve(stack.layers.size());

@@ -102,8 +102,12 @@ layers::BitGrid obstacle_grid(const layers::LayerStack& stack, const Settings& s
 
 class Obstacles {
 public:
-    // `threads`: rasterise the layers on that many threads (the result is the same).
-    Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads = 1);
+    // `threads`: rasterise the layers on that many threads (the result is the
+    // same). Layers above `solid_above` (mm) are taken as solid, not drawn:
+    // for a plan known to stay below it (a plate of copies, whose points are
+    // found before its obstacles), anything asked there is refused.
+    Obstacles(const layers::LayerStack& stack, const Settings& settings, int threads = 1,
+              double solid_above = std::numeric_limits<double>::infinity());
     // Caches of its own over the same model rasters, not copied: for another
     // thread (the caches fill as they are asked and are no thread's to
     // share; the rasters, a plate's largest part, never change).
@@ -175,7 +179,8 @@ private:
     bool skirt_disc_clear(int layer, double x, double y, double r) const;
     static std::shared_ptr<const std::vector<layers::BitGrid>> model_rasters(
         const layers::LayerStack& stack, const Settings& settings,
-        std::shared_ptr<const std::vector<SkirtLayer>>& skirts, std::vector<int>& skirt_at, int threads);
+        std::shared_ptr<const std::vector<SkirtLayer>>& skirts, std::vector<int>& skirt_at, int threads,
+        double solid_above);
     std::shared_ptr<const std::vector<SkirtLayer>> shared_skirts_;
     std::vector<int> skirt_at_;  // per layer: index into *shared_skirts_, or -1
     double skirt_relief_ = 0;

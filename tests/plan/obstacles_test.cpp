@@ -77,6 +77,30 @@ TEST(Obstacles, InsideThePartIsNoRoomOutsideTheSkirtLoopIs) {
     EXPECT_TRUE(obs.disc_clear(10, 90, 110, 1.0));
 }
 
+// A plan known to stay low (a plate of copies, its points found first)
+// draws its obstacles only up to a height: above it every place on its grid
+// is refused, below it each answer is the whole model's.
+TEST(Obstacles, AboveTheDrawnHeightNothingIsClear) {
+    Settings s;
+    const auto st = hollow_box(gcode::Role::ExternalPerimeter);
+    const plan::Obstacles all(st, s);
+    const double solid_above = st.layers[10].z + 0.01;
+    const plan::Obstacles low(st, s, 2, solid_above);
+    ASSERT_EQ(low.layer_count(), all.layer_count());
+    int clear_below = 0;
+    for (int l = 0; l < all.layer_count(); ++l)
+        for (double x : {90.0, 97.5, 101.0, 110.0, 130.0}) {
+            SCOPED_TRACE(testing::Message() << "layer " << l << ", x " << x);
+            if (st.layers[l].z > solid_above) {
+                EXPECT_FALSE(low.disc_clear(l, x, 110, 1.0));
+            } else {
+                EXPECT_EQ(low.disc_clear(l, x, 110, 1.0), all.disc_clear(l, x, 110, 1.0));
+                clear_below += all.disc_clear(l, x, 110, 1.0);
+            }
+        }
+    EXPECT_GT(clear_below, 0);
+}
+
 TEST(Obstacles, ACavityOfTheModelIsRoom) {
     // The same box walled by perimeters alone (a dome's inside, a cabin):
     // room for a pillar 10 mm from every wall, and a pillar down to the bed
