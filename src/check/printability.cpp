@@ -250,9 +250,10 @@ std::uint32_t first_layer_start(const layers::LayerStack& stack) {
 
 }  // namespace
 
-double estimate_print_time(const gcode::Program& p) {
+double estimate_print_time(const gcode::Program& p) { return estimate_moves(p.moves, motion_limits(p)); }
+
+MotionLimits motion_limits(const gcode::Program& p) {
     double accel = 1000, max_xy = 1e9, max_z = 1e9, max_e = 1e9;
-    constexpr double kJunctionDeviation = 0.013;  // mm, Marlin's default
     gcode::Command cmd;
     for (std::size_t i = 0; i < p.lines.size(); ++i) {
         std::string_view t = p.line_text(i);
@@ -266,13 +267,19 @@ double estimate_print_time(const gcode::Program& p) {
             max_e = cmd.get('E', max_e);
         }
     }
+    return {accel, max_xy, max_z, max_e};
+}
+
+double estimate_moves(const std::vector<gcode::Move>& moves, const MotionLimits& limits) {
+    const double accel = limits.accel, max_xy = limits.max_xy, max_z = limits.max_z, max_e = limits.max_e;
+    constexpr double kJunctionDeviation = 0.013;  // mm, Marlin's default
     // Each move is a trapezoid between junction speeds; a junction is as fast
     // as Marlin's junction deviation allows for the turn (0 around E-only
     // moves and at the ends), then limited so every move can reach it.
     struct Seg { double d, v, ux, uy, uz; bool xyz; };
     std::vector<Seg> segs;
-    segs.reserve(p.moves.size());
-    for (const auto& m : p.moves) {
+    segs.reserve(moves.size());
+    for (const auto& m : moves) {
         double dx = m.x1 - m.x0, dy = m.y1 - m.y0, dz = m.z1 - m.z0;
         double d = std::sqrt(dx * dx + dy * dy + dz * dz);
         bool xyz = d > 1e-9;

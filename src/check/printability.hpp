@@ -104,6 +104,14 @@ CheckReport check(const gcode::Program& out, const gcode::Program* original, con
 // junction deviation, 0.013 mm), using the file's M201/M203/M204 limits
 // where given, else 1000 mm/s^2.
 double estimate_print_time(const gcode::Program& program);
+// The same in two parts: the machine's limits as the file's M201, M203 and
+// M204 lines set them, and the estimate over moves (in printing order) at
+// those limits.
+struct MotionLimits {
+    double accel = 1000, max_xy = 1e9, max_z = 1e9, max_e = 1e9;
+};
+MotionLimits motion_limits(const gcode::Program& program);
+double estimate_moves(const std::vector<gcode::Move>& moves, const MotionLimits& limits);
 
 std::string report_text(const CheckReport& r);
 // `s` as a JSON string, quoted (quotes and backslashes escaped, control

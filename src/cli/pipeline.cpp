@@ -726,9 +726,10 @@ Outcome run(const Request& req, spdlog::logger& log) {
                                : estimate_time          ? check::estimate_print_time(program)
                                                         : 0;
     // Nothing below reads the moves (the splice re-lexes the lines) but
-    // --check's comparison with the input: free them, the largest part of a
-    // big file's memory.
-    if (!req.check) std::vector<gcode::Move>().swap(program.moves);
+    // --check's comparison with the input and the output's print-time
+    // estimate (the input's with the support's put in): else free them, the
+    // largest part of a big file's memory.
+    if (!req.check && !estimate_time) std::vector<gcode::Move>().swap(program.moves);
     time.lap("layers");
     // A plate of exact copies: the first copy's overhangs found and planned,
     // its plan moved to the others.
@@ -817,6 +818,21 @@ Outcome run(const Request& req, spdlog::logger& log) {
     progress.say("writing the support into the G-code");
     splice::SpliceResult spliced = splice::splice(program, stack, paths, settings, plan::worker_count(2, req.threads));
     time.lap("splice");
+    // The output's print time: its moves (the input's, the blocks' put in,
+    // no second reading of the whole output) estimated on a second thread
+    // while it is written.
+    std::future<double> estimated_after;
+    std::vector<gcode::Move> moves_after;
+    check::MotionLimits limits;
+    if (estimate_time) {
+        moves_after = splice::spliced_moves(program, spliced);
+        limits = check::motion_limits(program);
+        if (!req.check) std::vector<gcode::Move>().swap(program.moves);
+        if (two_threads)
+            estimated_after = std::async(std::launch::async, [moves = std::move(moves_after), limits] {
+                return check::estimate_moves(moves, limits);
+            });
+    }
 
     std::size_t pillars = 0;
     for (const auto& c : scaffold.columns) pillars += c.base == plan::Base::Bed || c.base == plan::Base::Model;
@@ -840,21 +856,8 @@ Outcome run(const Request& req, spdlog::logger& log) {
     edits.push_back({program.lines.empty() ? 0u : 1u, false, header});
     splice::update_times(program, std::move(block_times), edits);
     update_totals(program, spliced.filament_mm, settings.spool_diameter, edits);
-    // A text file written: rendered once, its copy parsed for the estimate
-    // on a second thread while the file is written (two copies in memory:
-    // a small file's; a larger one is streamed out and read back).
-    std::future<double> estimated_after;
-    if (req.output_text) {
-        *req.output_text = gcode::render_edited(program, std::move(edits));
-    } else if (estimate_time && two_threads && program.text.size() < 10'000'000 && gcode::text_output(program, format)) {
-        const std::string text = gcode::render_edited(program, std::move(edits));
-        estimated_after = std::async(std::launch::async, [copy = text, &program]() mutable {
-            return check::estimate_print_time(gcode::parse(std::move(copy), program.path));
-        });
-        gcode::write_bytes(req.output, text);
-    } else {
-        gcode::write_output(req.output, program, std::move(edits), format);
-    }
+    if (req.output_text) *req.output_text = gcode::render_edited(program, std::move(edits));
+    else gcode::write_output(req.output, program, std::move(edits), format);
     time.lap("write");
 
     std::string time_change;
@@ -862,10 +865,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     if (estimate_time) {
         progress.say("estimating the print time");
         double before = time_before;
-        double after = estimated_after.valid() ? estimated_after.get()
-                       : check::estimate_print_time(req.output_text ? gcode::parse(*req.output_text, program.path)
-                                                                    : gcode::read_file(req.output));
+        double after = estimated_after.valid() ? estimated_after.get() : check::estimate_moves(moves_after, limits);
         outcome.seconds_after = after;
+        log.debug("print time estimated: {:.3f} s before, {:.3f} s after", before, after);
         time_change = fmt::format("; print time {:.0f} -> {:.0f} min ({:+.0f} %)", before / 60, after / 60,
                                   before > 0 ? 100 * (after - before) / before : 0.0);
     }

@@ -649,9 +649,60 @@ SpliceResult splice(const gcode::Program& program, const layers::LayerStack& sta
         e.line = b.at;
         e.text = std::move(b.text);
         result.edits.push_back(std::move(e));
+        result.block_states.push_back(b.st);
         ++result.layers_touched;
     }
     return result;
+}
+
+std::vector<gcode::Move> spliced_moves(const gcode::Program& program, const SpliceResult& spliced) {
+    const std::vector<gcode::Move>& in = program.moves;
+    std::vector<gcode::Move> out;
+    out.reserve(in.size() + spliced.edits.size() * 64);
+    auto same = [](const gcode::Move& a, const gcode::Move& b) {
+        return a.kind == b.kind && a.x0 == b.x0 && a.y0 == b.y0 && a.z0 == b.z0 && a.x1 == b.x1 && a.y1 == b.y1 &&
+               a.z1 == b.z1 && a.e == b.e && a.feed_mm_per_min == b.feed_mm_per_min;
+    };
+    gcode::Command cmd;
+    std::vector<gcode::Move> moves;
+    std::size_t next = 0;    // the input's next move to take
+    std::uint32_t line = 0;  // lines before this are done
+    gcode::MachineState st;  // as the last block and the lines after it left it
+    for (std::size_t b = 0; b < spliced.edits.size(); ++b) {
+        const std::uint32_t at = spliced.edits[b].line;
+        while (next < in.size() && in[next].line < at) out.push_back(in[next++]);
+        // The block's own moves, from the state at its place (two blocks at
+        // one place: the second from where the first left it).
+        if (b == 0 || spliced.edits[b - 1].line != at) st = spliced.block_states[b];
+        line = std::max(line, at);
+        const std::string& text = spliced.edits[b].text;
+        for (std::size_t pos = 0; pos < text.size();) {
+            std::size_t nl = text.find('\n', pos);
+            if (nl == std::string::npos) nl = text.size();
+            gcode::lex(std::string_view(text).substr(pos, nl - pos), cmd);
+            if (cmd.letter != 0) gcode::step(st, cmd, at, out);
+            pos = nl + 1;
+        }
+        // The lines after it, stepped again until a move is the input's.
+        const std::uint32_t limit = b + 1 < spliced.edits.size()
+                                        ? spliced.edits[b + 1].line
+                                        : static_cast<std::uint32_t>(program.lines.size());
+        bool back = false;
+        for (; line < limit && !back; ++line) {
+            gcode::lex(program.line_text(line), cmd);
+            if (cmd.letter == 0) continue;
+            moves.clear();
+            gcode::step(st, cmd, line, moves);
+            std::size_t k = next;
+            while (k < in.size() && in[k].line == line) ++k;
+            back = !moves.empty() && k - next == moves.size() &&
+                   std::equal(moves.begin(), moves.end(), in.begin() + static_cast<long>(next), same);
+            out.insert(out.end(), moves.begin(), moves.end());
+            next = k;
+        }
+    }
+    while (next < in.size()) out.push_back(in[next++]);
+    return out;
 }
 
 }  // namespace scaffold::splice

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gcode/machine.hpp"
 #include "gcode/program.hpp"
 #include "gcode/settings.hpp"
 #include "gcode/writer.hpp"
@@ -26,11 +27,21 @@ struct SpliceResult {
     // Insertions that fell inside an object's labelled block or a tool
     // change open across the layer change (support spliced into it).
     std::size_t blocks_split = 0;
+    // The machine's state where each block goes in (same order as `edits`).
+    std::vector<gcode::MachineState> block_states;
 };
 
 // The blocks are written on `threads` threads (the same text on any number).
 SpliceResult splice(const gcode::Program& program, const layers::LayerStack& stack,
                     const toolpath::SupportPaths& paths, const Settings& settings, int threads = 1);
+
+// The moves of the output `spliced` makes of `program` (whose moves are
+// still those it was read with), in printing order, as reading the output
+// back gives them: the input's, each block's put in at its place, and the
+// lines after a block stepped again from where it leaves the machine until
+// their moves are the input's again. For the print-time estimate of the
+// output without reading all of it again.
+std::vector<gcode::Move> spliced_moves(const gcode::Program& program, const SpliceResult& spliced);
 
 // Filament (mm) for a bead of this length, width and height.
 double filament_for(double length, double width, double height, double filament_diameter);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "check/printability.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/machine.hpp"
 #include "gcode/reader.hpp"
@@ -437,4 +438,36 @@ TEST(Splice, TheSameBlocksOnAnyNumberOfThreads) {
     // machine as it found it: the relative-E tower's model moves unchanged.
     gcode::Program out = gcode::parse(render(in, one.edits), "out");
     EXPECT_EQ(model_moves(out).size(), in.moves.size());
+}
+
+// The output's moves worked out from the input's and the blocks are those
+// reading the output back gives, and so is its print-time estimate.
+TEST(Splice, TheOutputsMovesWithoutReadingItBack) {
+    for (const auto& [text, what] : {std::pair{tower("", false, 0), "absolute E"}, std::pair{tower("M83", false, 0), "relative E"},
+                                     std::pair{tower("", true, 0), "G10/G11"}, std::pair{tower("M83", false, 0.4), "z-hop"}}) {
+        SCOPED_TRACE(what);
+        gcode::Program in = gcode::parse(text, "in");
+        Settings s = build_settings(in, {}, {});
+        layers::LayerStack stack = layers::build_layers(in, s);
+        const auto res = splice::splice(in, stack, toolpath::make_paths(one_pillar(5), stack, s), s, 2);
+        ASSERT_EQ(res.block_states.size(), res.edits.size());
+        const std::vector<gcode::Move> worked = splice::spliced_moves(in, res);
+        const gcode::Program out = gcode::parse(render(in, res.edits), "out");
+        ASSERT_GT(out.moves.size(), in.moves.size());
+        ASSERT_EQ(worked.size(), out.moves.size());
+        for (std::size_t i = 0; i < worked.size(); ++i) {
+            const gcode::Move &a = worked[i], &b = out.moves[i];
+            ASSERT_EQ(a.kind, b.kind) << "move " << i;
+            ASSERT_EQ(a.x0, b.x0) << "move " << i;
+            ASSERT_EQ(a.y0, b.y0) << "move " << i;
+            ASSERT_EQ(a.z0, b.z0) << "move " << i;
+            ASSERT_EQ(a.x1, b.x1) << "move " << i;
+            ASSERT_EQ(a.y1, b.y1) << "move " << i;
+            ASSERT_EQ(a.z1, b.z1) << "move " << i;
+            ASSERT_EQ(a.e, b.e) << "move " << i;
+            ASSERT_EQ(a.feed_mm_per_min, b.feed_mm_per_min) << "move " << i;
+        }
+        EXPECT_EQ(check::estimate_moves(worked, check::motion_limits(in)), check::estimate_print_time(out));
+        EXPECT_GT(check::estimate_print_time(out), check::estimate_print_time(in));
+    }
 }
