@@ -736,7 +736,7 @@ Outcome run(const Request& req, spdlog::logger& log) {
     std::optional<layers::Copies> copies;
     // The plate's objects: each planned on its own where it can be.
     std::optional<layers::ObjectMap> objects;
-    if (settings.method != Method::None) objects.emplace(stack);
+    if (settings.method != Method::None) objects.emplace(stack, layers::model_bead, plan::worker_count(2, req.threads));
     if (req.plan_copies && settings.method != Method::None && !stack.z_varies && own_support_mm == 0) {
         std::string why;
         copies = layers::find_copies(stack, *objects, &why, plan::worker_count(2, req.threads));

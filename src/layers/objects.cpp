@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
+#include <vector>
 
 #include "gcode/role.hpp"
 #include "layers/regions.hpp"
@@ -35,10 +37,24 @@ BitGrid footprint_grid(const LayerStack& stack, const ObjectMap::BeadTest& is_mo
 
 }  // namespace
 
-ObjectMap::ObjectMap(const LayerStack& stack, const BeadTest& is_model) : grid_(footprint_grid(stack, is_model)) {
-    for (const Layer& layer : stack.layers)
-        for (const Segment& s : layer.segments)
-            if (is_model(layer, s)) grid_.draw_segment(s.x0, s.y0, s.x1, s.y1, std::max<double>(s.width, kObjectJoin));
+ObjectMap::ObjectMap(const LayerStack& stack, const BeadTest& is_model, int threads)
+    : grid_(footprint_grid(stack, is_model)) {
+    // Every model bead of every layer drawn into one footprint: each thread
+    // every `threads`-th layer into a grid of its own, ORed after.
+    const int n = std::max(1, std::min(threads, static_cast<int>(stack.layers.size())));
+    std::vector<BitGrid> part(static_cast<std::size_t>(n - 1), grid_.empty_like());
+    auto draw = [&](int t) {
+        BitGrid& g = t == 0 ? grid_ : part[static_cast<std::size_t>(t - 1)];
+        for (std::size_t l = static_cast<std::size_t>(t); l < stack.layers.size(); l += static_cast<std::size_t>(n))
+            for (const Segment& s : stack.layers[l].segments)
+                if (is_model(stack.layers[l], s)) g.draw_segment(s.x0, s.y0, s.x1, s.y1, std::max<double>(s.width, kObjectJoin));
+    };
+    {
+        std::vector<std::jthread> helpers;
+        for (int t = 1; t < n; ++t) helpers.emplace_back(draw, t);
+        draw(0);
+    }
+    for (const BitGrid& g : part) grid_ |= g;
     label_.assign(static_cast<std::size_t>(grid_.width()) * static_cast<std::size_t>(grid_.height()), -1);
     const std::vector<std::vector<Cell>> pieces = components(grid_);
     count_ = static_cast<int>(pieces.size());

@@ -25,7 +25,8 @@ public:
     // `is_model`: which beads are the model's (model_bead, or fewer: a
     // validator leaves out the support it judges).
     using BeadTest = std::function<bool(const Layer&, const Segment&)>;
-    explicit ObjectMap(const LayerStack& stack, const BeadTest& is_model = model_bead);
+    // `threads`: the layers drawn on that many threads (the same map).
+    explicit ObjectMap(const LayerStack& stack, const BeadTest& is_model = model_bead, int threads = 1);
     int count() const { return count_; }
     // The object whose footprint holds (x, y), else the nearest within
     // `reach` mm of it (the first found, ring by ring); -1: none.

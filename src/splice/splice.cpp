@@ -262,6 +262,9 @@ private:
         const double len = std::hypot(x - x_, y - y_);
         const int n = std::max(1, static_cast<int>(std::ceil(len / kFreshStep)));
         double widest = 0;
+        // The samples, 0.1 mm apart, mostly share their cell with the last.
+        std::uint64_t last_key = 0;
+        const std::vector<std::uint32_t>* here = nullptr;
         for (int i = 0; i <= n; ++i) {
             const double t = static_cast<double>(i) / n, px = x_ + (x - x_) * t, py = y_ + (y - y_) * t;
             // Gaps of kGapCap or more decide nothing below (kGapCap is above
@@ -270,8 +273,13 @@ private:
             // of beads a layer and travels across the bed, and asking every
             // bead at every sample grew with the square of the plate.
             double gap = kGapCap;
-            if (auto it = near_.find(cell_key(cell_of(px), cell_of(py))); it != near_.end())
-                for (std::uint32_t k : it->second) {
+            if (const std::uint64_t key = cell_key(cell_of(px), cell_of(py)); i == 0 || key != last_key) {
+                const auto it = near_.find(key);
+                here = it == near_.end() ? nullptr : &it->second;
+                last_key = key;
+            }
+            if (here)
+                for (std::uint32_t k : *here) {
                     const Bead& b = printed_[k];
                     // The exact distance only where the squared one (with
                     // room for rounding) says it may lower the gap.

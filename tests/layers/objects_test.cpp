@@ -65,3 +65,26 @@ TEST(Objects, PiecesOfTheFootprintOverAllLayers) {
               }).count(),
               2);
 }
+
+// The layers drawn on several threads: the same objects, cell by cell. The
+// join of the second and third squares is on one layer only, which one
+// thread draws and the other does not.
+TEST(Objects, TheSameMapOnAnyNumberOfThreads) {
+    const auto st = test::stack_of(
+        9,
+        [](int i, layers::Layer& l) {
+            square(l, 10, 10);
+            square(l, 26, 10);
+            square(l, i == 7 ? 36.8 : 40, 10);
+        },
+        {0, 0, 70, 30});
+    const layers::ObjectMap one(st, layers::model_bead, 1);
+    ASSERT_EQ(one.count(), 2);
+    for (int threads : {2, 3, 16}) {
+        SCOPED_TRACE(threads);
+        const layers::ObjectMap many(st, layers::model_bead, threads);
+        EXPECT_EQ(many.count(), one.count());
+        for (double x = 0; x < 70; x += 0.25)
+            for (double y = 0; y < 30; y += 0.25) ASSERT_EQ(many.at(x, y), one.at(x, y)) << x << ", " << y;
+    }
+}
