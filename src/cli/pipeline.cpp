@@ -699,9 +699,9 @@ Outcome run(const Request& req, spdlog::logger& log) {
     bool big = program.text.size() > 10'000'000;
     if (big) log.info("{:.0f} MB read; finding overhangs...", static_cast<double>(program.text.size()) / 1e6);
 
-    // Print-time change, by the validator's estimate of the output (read
-    // back or parsed from memory, below), so only when that is cheap; not
-    // for stdout, a device or a pipe.
+    // Print-time change, by the validator's estimate of the output (worked
+    // out from the input's moves, kept to the end for it: so only under
+    // 50 MB); not for stdout, a device or a pipe, as when it was read back.
     const bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
                                program.text.size() < 50'000'000;
     // Both read the moves alone: the estimate on a second thread while the

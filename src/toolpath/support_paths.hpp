@@ -82,10 +82,12 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
 // Copies of one plan (a plate's exact copies): `one`'s paths moved by each
 // offset ((0, 0) first), each layer printing copy after copy in the
 // offsets' order, the travel from one copy to the next asked of `clear`.
-// The same paths make_paths gives the copies' plans together, but for
-// their order, only where no two copies' paths (their widths included)
-// come within `apart` mm of each other, so no loop, raft, bond or spur of
-// one meets another's: else nullopt.
+// Only where no two copies' paths (their widths included) come within
+// `apart` mm of each other, so no loop, raft, bond or spur of one meets
+// another's: else nullopt. make_paths of the copies' plans together then
+// gives the same paths but for their order and, where two of a copy's own
+// loops nearly retrace each other, which of them it keeps (the columns
+// come in another order): these are the paths the copy was checked with.
 std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
                                          const TravelClear& clear);
 
