@@ -329,7 +329,8 @@ double widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains
 }  // namespace
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-               const Forbidden& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers) {
+               const Forbidden& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers,
+               std::vector<std::size_t>* braced_bars) {
     const double target = target_stiffness(s);
     if (!(target > 0)) return 0;
     std::vector<PillarChain> chains = pillar_chains(sc);
@@ -454,6 +455,17 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             }
         }
         return true;
+    };
+    // The plan's own bars whose end is a column's top, added to `out` once
+    // (braces come after the plan's own bars).
+    auto bars_ending_at = [&](const Column& top, std::vector<std::size_t>& out) {
+        auto at_top = [&](double x, double y) { return std::hypot(x - top.x1, y - top.y1) < kEps; };
+        for (std::size_t i = 0; i < sc.bridges.size(); ++i) {
+            const Bridge& b = sc.bridges[i];
+            if (!b.brace && std::abs(b.z - top.z1) < kEps && (at_top(b.x0, b.y0) || at_top(b.x1, b.y1)) &&
+                std::find(out.begin(), out.end(), i) == out.end())
+                out.push_back(i);
+        }
     };
     int added = 0;
     std::vector<BraceNode> nodes;  // the triangles' ties, for the walk below
@@ -752,6 +764,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         }
         // The helpers chosen, back where their pieces' indices point.
         sc.columns.insert(sc.columns.end(), helper_columns.begin(), helper_columns.end());
+        if (braced_bars)
+            for (int piece : W.pieces) bars_ending_at(sc.columns[piece], *braced_bars);
         braced[wi] = 1;
         std::vector<int> corner_ids{wi};
         for (int c : corners) {
@@ -822,14 +836,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         if (braced[*it]) continue;
         const Column top = sc.columns[chains[*it].pieces.back()];
         if (widen_untied(sc, *it, chains, meets, stack, obs, s, tops) >= s.min_stiffness || !short_of_rule) continue;
-        // The bars whose end it is (braces come after the plan's own bars).
-        for (std::size_t i = 0; i < sc.bridges.size(); ++i) {
-            const Bridge& b = sc.bridges[i];
-            auto at_top = [&](double x, double y) { return std::hypot(x - top.x1, y - top.y1) < kEps; };
-            if (!b.brace && std::abs(b.z - top.z1) < kEps && (at_top(b.x0, b.y0) || at_top(b.x1, b.y1)) &&
-                std::find(short_of_rule->begin(), short_of_rule->end(), i) == short_of_rule->end())
-                short_of_rule->push_back(i);
-        }
+        bars_ending_at(top, *short_of_rule);
     }
     if (short_of_rule) {
         std::sort(short_of_rule->begin(), short_of_rule->end());

@@ -102,7 +102,9 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
 // that stands stiffer. Returns the bars added. `short_of_rule` (optional)
 // gets the bars (indices, none a brace) whose end stands on such a pillar
 // and which, widened or not, still falls short of --min-stiffness by that
-// walk: the plan is better made without them.
+// walk: the plan is better made without them. `braced_bars` (optional)
+// gets the plan's own bars (indices) whose end stands on a piece of a column
+// that a triangle of bars ties: what those bars cost includes the braces.
 // The helper pillars add_braces dropped, by place, height and shape (x, y,
 // the bar's height and layer, radius and stiffness asked, as bits): the
 // plans made again on the same model ask for most of them again
@@ -115,6 +117,7 @@ struct BraceAnswers {
 // `answers` (optional): kept by the caller over plans made again.
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
                const Settings& settings, const Forbidden& forbidden,
-               std::vector<std::size_t>* short_of_rule = nullptr, BraceAnswers* answers = nullptr);
+               std::vector<std::size_t>* short_of_rule = nullptr, BraceAnswers* answers = nullptr,
+               std::vector<std::size_t>* braced_bars = nullptr);
 
 }  // namespace scaffold::plan

@@ -668,6 +668,17 @@ std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vec
     return out;
 }
 
+double paths_volume(const SupportPaths& paths, const layers::LayerStack& stack) {
+    double v = 0;
+    for (const LayerPaths& lp : paths.layers) {
+        const double h = lp.bond() ? lp.bond_height : stack.layers[lp.layer].height;
+        for (const Path& path : lp.paths)
+            for (std::size_t i = 1; i < path.points.size(); ++i)
+                v += std::hypot(path.points[i].x - path.points[i - 1].x, path.points[i].y - path.points[i - 1].y) * path.width * h;
+    }
+    return v;
+}
+
 void move_paths(SupportPaths& paths, double dx, double dy) {
     for (LayerPaths& lp : paths.layers)
         for (Path& path : lp.paths)

@@ -46,6 +46,9 @@ struct SupportPaths {
     std::vector<LayerPaths> layers;  // only layers with support, by index
 };
 
+// The paths' volume, mm^3: length x width x the layer's height.
+double paths_volume(const SupportPaths& paths, const layers::LayerStack& stack);
+
 // Every point moved by (dx, dy): paths made in the plan's frame, put on the bed.
 void move_paths(SupportPaths& paths, double dx, double dy);
 

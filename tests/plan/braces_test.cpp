@@ -111,6 +111,26 @@ TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedWhereTheyStopStanding) {
     }
 }
 
+// What a bar on a braced column costs includes the braces: add_braces
+// names the plan's bars whose end is a braced column's top (the triangle
+// above ties all three corners, so a bar from the first to the second is
+// named), not a bar whose ends stand on no braced column, nor the braces.
+TEST_F(BraceScene, TheBarsOnBracedColumnsAreNamed) {
+    sc.columns.push_back(plain(30, 30, 40));
+    sc.columns.push_back(plain(40, 30, 40));
+    sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
+    sc.columns.push_back(plain(70, 70, 8));  // 8 mm: 3 x 2303.22 / 8^3 = 13.5 N/mm, stands alone
+    sc.columns.push_back(plain(75, 70, 8));
+    plan::Bridge on_braced, elsewhere;
+    on_braced.x0 = 30, on_braced.y0 = 30, on_braced.x1 = 40, on_braced.y1 = 30, on_braced.z = 40;
+    elsewhere.x0 = 70, elsewhere.y0 = 70, elsewhere.x1 = 75, elsewhere.y1 = 70, elsewhere.z = 8;
+    sc.bridges = {elsewhere, on_braced};
+    std::vector<std::size_t> braced;
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}, nullptr, nullptr, &braced), 6);
+    EXPECT_EQ(braced, std::vector<std::size_t>{1});
+    for (std::size_t i = 2; i < sc.bridges.size(); ++i) EXPECT_TRUE(sc.bridges[i].brace);
+}
+
 // A fourth column printed as one with the first (another point's pillar
 // down the same way: same base, same loops, 0.2 mm taller) is tied by the
 // same triangle: above the top tie, its 11 mm stand 3 x 2303.22 / 11^3 =

@@ -475,3 +475,26 @@ TEST(SupportPaths, CopiesWhoseSupportsMeetAreNotMoved) {
     // 5 mm apart leaves 3 mm: moved.
     EXPECT_TRUE(toolpath::copied_paths(paths, {{0, 0}, {5, 0}}, 1.0, {}).has_value());
 }
+
+// The paths' volume, length x width x height: on a 0.2 mm layer a 3-4-5
+// line 0.5 wide is 5 x 0.5 x 0.2 = 0.5 mm^3 and a second segment back to
+// (0, 4) adds 3 x 0.5 x 0.2 = 0.3; a bond 0.1 mm high, 10 mm of 0.4 wide,
+// is 0.4 whatever its layer's height. 1.2 mm^3.
+TEST(SupportPaths, VolumeIsLengthTimesWidthTimesHeight) {
+    const layers::LayerStack st = test::empty_stack(2);
+    ASSERT_NEAR(st.layers[3].height, 0.2, 1e-9);
+    toolpath::SupportPaths paths;
+    toolpath::LayerPaths plain;
+    plain.layer = 3;
+    plain.paths.push_back({{{0, 0}, {3, 4}, {0, 4}}, 0.5});
+    paths.layers.push_back(plain);
+    toolpath::LayerPaths bond;
+    bond.layer = 5;
+    bond.bond_z = 0.95;
+    bond.bond_height = 0.1;
+    bond.paths.push_back({{{10, 10}, {20, 10}}, 0.4});
+    paths.layers.push_back(bond);
+    EXPECT_NEAR(toolpath::paths_volume(paths, st), 1.2, 1e-12);
+    toolpath::move_paths(paths, 7, -3);
+    EXPECT_NEAR(toolpath::paths_volume(paths, st), 1.2, 1e-12);
+}
