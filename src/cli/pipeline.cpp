@@ -739,9 +739,8 @@ Outcome run(const Request& req, spdlog::logger& log) {
 
     // Print-time change, by the validator's estimate of the output (worked
     // out from the input's moves, kept to the end for it: so only under
-    // 50 MB); not for stdout, a device or a pipe, as when it was read back.
-    const bool estimate_time = (req.output_text || (req.output != "-" && !gcode::is_device(req.output))) &&
-                               program.text.size() < 50'000'000;
+    // 50 MB). Never read back, so stdout, a device or a pipe get it too.
+    const bool estimate_time = program.text.size() < 50'000'000;
     // Both read the moves alone: the estimate on a second thread while the
     // layers are built.
     const bool two_threads = plan::worker_count(2, req.threads) > 1;

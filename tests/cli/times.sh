@@ -75,5 +75,10 @@ for threads in 1 2; do
   [ -n "$want_before" ] && [ -n "$want_after" ] && [ "$said" = "$want" ] ||
     bad "--threads $threads says print time '$said' min, the checker '$want' ($want_before, $want_after)"
 done
+# Written to stdout the same file, and the same estimate (not read back).
+"$build/scaffold" "$tmp/cura.gcode" -o - > "$tmp/cura.stdout.gcode" 2> "$tmp/log.txt"
+cmp -s "$tmp/cura.stdout.gcode" "$tmp/cura.out.gcode" || bad "stdout gets another file"
+said="$(sed -n 's/.*; print time \([0-9]*\) -> \([0-9]*\) min.*/\1 \2/p' "$tmp/log.txt")"
+[ "$said" = "$want" ] || bad "written to stdout, says print time '$said' min, the checker '$want'"
 [ "$fail" -eq 0 ] || exit 1
-echo "time lines: PrusaSlicer estimate and M73 ($n layers) and Cura ;TIME:/;TIME_ELAPSED: raised by the support's time; checker passes; the print time said is the checker's on 1 and 2 threads"
+echo "time lines: PrusaSlicer estimate and M73 ($n layers) and Cura ;TIME:/;TIME_ELAPSED: raised by the support's time; checker passes; the print time said is the checker's on 1 and 2 threads and to stdout"
