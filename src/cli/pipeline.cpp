@@ -276,6 +276,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
     plan::BraceAnswers brace_answers;  // the helper pillars dropped, asked again by the next round
+    toolpath::BarCheckCache bar_cache;  // the bar lines judged, asked again by the next round
     // A plan made in rounds, each without the bars the last could not hold.
     struct Attempt {
         overhang::SupportPoints points;
@@ -332,7 +333,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             // the edge of a column it does not rest on), or whose end stands on
             // a column that neither braces nor widening make stiff enough: plan
             // again without it.
-            std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings);
+            std::vector<toolpath::UnheldBar> unheld_at = toolpath::unheld_bars(scaffold, paths, stack, settings, &bar_cache);
             if (!unheld_at.empty()) {
                 // Rule (b): a bar that passes beside a column rests on a prop from
                 // it instead, where that holds it and fails no other bar.
@@ -340,7 +341,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                 const std::vector<std::size_t> before = bar_indices(unheld_at);
                 if (const int n = plan::prop_bars(propped, before, stack, obstacles, settings)) {
                     toolpath::SupportPaths propped_paths = toolpath::make_paths(propped, stack, settings, &obstacles);
-                    std::vector<toolpath::UnheldBar> still = toolpath::unheld_bars(propped, propped_paths, stack, settings);
+                    std::vector<toolpath::UnheldBar> still = toolpath::unheld_bars(propped, propped_paths, stack, settings, &bar_cache);
                     const std::vector<std::size_t> after = bar_indices(still);
                     const bool better = after.size() < before.size() && std::includes(before.begin(), before.end(), after.begin(), after.end());
                     log.debug("{} props under bars beside columns: {} of {} bars held{}", n, before.size() - after.size(),
@@ -453,7 +454,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // taken out (a tie less), not left in. (Not asked again when that plan's
     // bars were checked and all held.)
     for (int k = 0; k < 3 && !bars_held; ++k) {
-        std::vector<std::size_t> bad = bar_indices(toolpath::unheld_bars(scaffold, paths, stack, settings));
+        std::vector<std::size_t> bad = bar_indices(toolpath::unheld_bars(scaffold, paths, stack, settings, &bar_cache));
         if (log.should_log(spdlog::level::trace))
             for (std::size_t i : bad) {
                 const plan::Bridge& b = scaffold.bridges[i];

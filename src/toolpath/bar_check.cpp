@@ -1,6 +1,7 @@
 #include "toolpath/bar_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -64,21 +65,32 @@ Point what_fails(const std::vector<layers::PieceSample>& p, const layers::BitGri
     return out;
 }
 
+// The grid a line is judged on, and the beads drawn on it: those reaching
+// within `reach` of it.
+struct Window {
+    double x0, y0, x1, y1, reach;
+    bool outside(const Bead& d) const {
+        return std::max(d.x0, d.x1) < x0 - reach || std::min(d.x0, d.x1) > x1 + reach ||
+               std::max(d.y0, d.y1) < y0 - reach || std::min(d.y0, d.y1) > y1 + reach;
+    }
+};
+
+// On the validator's lattice (multiples of the cell from the origin, as
+// make_grid lays it): a bar grazing a loop is judged cell for cell alike.
+Window window_of(const Point& a, const Point& b, double cell, double reach) {
+    return {std::floor((std::min(a.x, b.x) - kMargin) / cell) * cell, std::floor((std::min(a.y, b.y) - kMargin) / cell) * cell,
+            std::max(a.x, b.x) + kMargin, std::max(a.y, b.y) + kMargin, reach};
+}
+
 // Whether the line a -> b on a layer is held by `beads` beneath it: rule
 // (a) with the holes they enclose, (b), then (c) near a contact tip (support
 // beneath, under the layer's own model `here`), in the validator's order.
 bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, const std::vector<Bead>& here,
                double reach, double cell, double bridge_limit, double point_radius, std::vector<layers::PieceSample>& p,
                Point* where = nullptr) {
-    // On the validator's lattice (multiples of the cell from the origin, as
-    // make_grid lays it): a bar grazing a loop is judged cell for cell alike.
-    const double x0 = std::floor((std::min(a.x, b.x) - kMargin) / cell) * cell, x1 = std::max(a.x, b.x) + kMargin;
-    const double y0 = std::floor((std::min(a.y, b.y) - kMargin) / cell) * cell, y1 = std::max(a.y, b.y) + kMargin;
-    layers::BitGrid footprint(x0, y0, x1, y1, cell), held = footprint, tips = footprint;
-    auto outside = [&](const Bead& d) {
-        return std::max(d.x0, d.x1) < x0 - reach || std::min(d.x0, d.x1) > x1 + reach ||
-               std::max(d.y0, d.y1) < y0 - reach || std::min(d.y0, d.y1) > y1 + reach;
-    };
+    const Window w = window_of(a, b, cell, reach);
+    layers::BitGrid footprint(w.x0, w.y0, w.x1, w.y1, cell), held = footprint, tips = footprint;
+    auto outside = [&](const Bead& d) { return w.outside(d); };
     bool any_tip = false;
     for (const Bead& d : beads) {
         if (outside(d)) continue;
@@ -146,6 +158,20 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
 // What lies beneath layer `l` as METHOD and the validator take it: the
 // model within one nominal layer (its layers beneath), support printed up to
 // three nominal layers down (`printed`), and the model of the layer itself.
+// The support printed up to three nominal layers under layer `l`.
+void gather_support(int l, const std::vector<LayerPaths>& printed, const layers::LayerStack& stack,
+                    const Settings& settings, std::vector<Bead>& beads) {
+    const layers::Layer& layer = stack.layers[l];
+    for (const LayerPaths& under : printed) {
+        const double dz = layer.z - printed_z(under, stack);
+        if (dz <= kZEps || dz > 3 * settings.layer_height + kZEps) continue;
+        for (const Path& path : under.paths)
+            for (std::size_t i = 1; i < path.points.size(); ++i)
+                beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y), written(path.points[i].x),
+                                 written(path.points[i].y), static_cast<float>(path.width), true, true});
+    }
+}
+
 void gather_beneath(int l, const std::vector<LayerPaths>& printed, const layers::LayerStack& stack,
                     const Settings& settings, std::vector<Bead>& beads, std::vector<Bead>& here) {
     const layers::Layer& layer = stack.layers[l];
@@ -157,14 +183,7 @@ void gather_beneath(int l, const std::vector<LayerPaths>& printed, const layers:
     for (const layers::Segment& sg : layer.segments)
         if (sg.role != gcode::Role::Skirt && !gcode::is_support(sg.role))
             here.push_back({sg.x0, sg.y0, sg.x1, sg.y1, sg.width, true, false});
-    for (const LayerPaths& under : printed) {
-        const double dz = layer.z - printed_z(under, stack);
-        if (dz <= kZEps || dz > 3 * settings.layer_height + kZEps) continue;
-        for (const Path& path : under.paths)
-            for (std::size_t i = 1; i < path.points.size(); ++i)
-                beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y), written(path.points[i].x),
-                                 written(path.points[i].y), static_cast<float>(path.width), true, true});
-    }
+    gather_support(l, printed, stack, settings, beads);
 }
 
 double reach_on(const layers::Layer& layer, const Settings& settings) {
@@ -183,11 +202,13 @@ bool segment_held(const Point& a, const Point& b, int layer, const std::vector<L
 }
 
 std::vector<UnheldBar> unheld_bars(const plan::Scaffold& scaffold, const SupportPaths& paths,
-                                   const layers::LayerStack& stack, const Settings& settings) {
+                                   const layers::LayerStack& stack, const Settings& settings, BarCheckCache* cache) {
     std::vector<UnheldBar> out;
     if (scaffold.bridges.empty()) return out;
-    std::vector<Bead> beads, here;
+    std::vector<Bead> beads, here, support;
     std::vector<layers::PieceSample> samples;
+    std::vector<double> key;
+    std::vector<std::array<double, 5>> near;
     for (std::size_t bi = 0; bi < scaffold.bridges.size(); ++bi) {
         const plan::Bridge& br = scaffold.bridges[bi];
         std::optional<UnheldBar> bad;
@@ -195,14 +216,46 @@ std::vector<UnheldBar> unheld_bars(const plan::Scaffold& scaffold, const Support
             if (lp.bond()) continue;  // loops only, under a column's first layer
             const double z = stack.layers[lp.layer].z;
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
-            gather_beneath(lp.layer, paths.layers, stack, settings, beads, here);
+            // With a cache, the model beneath only once a line is not in it.
+            bool gathered = false;
+            if (cache) {
+                support.clear();
+                gather_support(lp.layer, paths.layers, stack, settings, support);
+            } else {
+                gather_beneath(lp.layer, paths.layers, stack, settings, beads, here);
+                gathered = true;
+            }
             const double reach = reach_on(stack.layers[lp.layer], settings);
-            for (const std::vector<Point>& line : bar_lines(br, settings.support_width, settings.pillar_radius))
-                if (Point at; !line_held(line.front(), line.back(), beads, here, reach, settings.resolution,
-                                         settings.marked_bridge_limit, settings.point_radius, samples, &at)) {
-                    bad = UnheldBar{bi, at.x, at.y};
+            for (const std::vector<Point>& line : bar_lines(br, settings.support_width, settings.pillar_radius)) {
+                const Point &a = line.front(), &b = line.back();
+                BarCheckCache::Answer answer;
+                std::map<std::vector<double>, BarCheckCache::Answer>::iterator found;
+                if (cache) {
+                    // The model beneath and beside is the layer's: the key
+                    // holds the support beads line_held would draw.
+                    const Window w = window_of(a, b, settings.resolution, reach);
+                    near.clear();
+                    for (const Bead& d : support)
+                        if (!w.outside(d)) near.push_back({d.x0, d.y0, d.x1, d.y1, d.width});
+                    std::sort(near.begin(), near.end());
+                    key.assign({static_cast<double>(lp.layer), a.x, a.y, b.x, b.y});
+                    for (const auto& d : near) key.insert(key.end(), d.begin(), d.end());
+                    found = cache->answers.find(key);
+                }
+                if (cache && found != cache->answers.end()) {
+                    answer = found->second;
+                } else {
+                    if (!gathered) gather_beneath(lp.layer, paths.layers, stack, settings, beads, here);
+                    gathered = true;
+                    answer.held = line_held(a, b, beads, here, reach, settings.resolution, settings.marked_bridge_limit,
+                                            settings.point_radius, samples, &answer.at);
+                    if (cache) cache->answers.emplace(key, answer);
+                }
+                if (!answer.held) {
+                    bad = UnheldBar{bi, answer.at.x, answer.at.y};
                     break;
                 }
+            }
             if (bad) break;
         }
         if (bad) out.push_back(*bad);

@@ -18,7 +18,7 @@ namespace {
 // to (30, 20), on loops of outer radius 1 at its ends on layers 17-21; with
 // `beside`, a loop of outer radius 2.5 on layers 17-19 whose edge passes
 // 0.25 mm from the bar's near line (within rule (a)'s reach, 0.336 mm).
-std::vector<toolpath::UnheldBar> failed(bool beside, double wall_gap = 0) {
+std::vector<toolpath::UnheldBar> failed(bool beside, double wall_gap = 0, toolpath::BarCheckCache* cache = nullptr) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
     plan::Scaffold sc;
@@ -46,7 +46,7 @@ std::vector<toolpath::UnheldBar> failed(bool beside, double wall_gap = 0) {
                 lp.paths.push_back({line, s.support_width});
         paths.layers.push_back(std::move(lp));
     }
-    return toolpath::unheld_bars(sc, paths, st, s);
+    return toolpath::unheld_bars(sc, paths, st, s, cache);
 }
 
 std::vector<std::size_t> unheld(bool beside, double wall_gap = 0) {
@@ -89,4 +89,27 @@ TEST(BarCheck, WhereABarFailsIsWhatItPassesBeside) {
 TEST(BarCheck, ACrossingThatHoldsOnlyFromTheExactHeldEndIsNotTaken) {
     EXPECT_EQ(unheld(false, 1.0), std::vector<std::size_t>{0});
     EXPECT_TRUE(unheld(false, 1.35).empty());
+}
+
+// Answers kept over plans: the same scene asked again is answered from the
+// cache (no line judged again: it grows no more), a scene whose support
+// beside the bar changed is judged afresh, and every answer is the one
+// judged without a cache. The held bar: 2 lines on 2 layers, 4 answers;
+// the bar beside the loop fails on the first layer at its second line,
+// after its first held: 2.
+TEST(BarCheck, AnswersKeptOverPlansAreTheAnswersJudgedAfresh) {
+    toolpath::BarCheckCache cache;
+    EXPECT_EQ(failed(false, 0, &cache), failed(false));
+    EXPECT_EQ(cache.answers.size(), 4u);
+    EXPECT_EQ(failed(true, 0, &cache), failed(true));
+    EXPECT_EQ(cache.answers.size(), 6u);
+    EXPECT_EQ(failed(false, 1.0, &cache), failed(false, 1.0));
+    const std::size_t all = cache.answers.size();
+    EXPECT_GT(all, 6u);
+    for (int again = 0; again < 2; ++again) {
+        EXPECT_TRUE(failed(false, 0, &cache).empty());
+        EXPECT_EQ(failed(true, 0, &cache), failed(true));
+        EXPECT_EQ(failed(false, 1.0, &cache), failed(false, 1.0));
+    }
+    EXPECT_EQ(cache.answers.size(), all);
 }
