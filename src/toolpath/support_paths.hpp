@@ -94,6 +94,29 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
 std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
                                          const TravelClear& clear);
 
+// The copies (`one`'s paths moved by each offset) in clusters: those whose
+// paths come within `apart` mm of each other (widths included) joined, and
+// so on. Each cluster's copies ascending, clusters by their first copy; a
+// cluster a copy where all stand apart.
+std::vector<std::vector<std::size_t>> copy_clusters(const SupportPaths& one, const std::vector<Point>& offsets,
+                                                    double apart);
+
+// Paths of parts of a plate that stand apart, each made once and moved:
+// every layer prints part after part in this order, each part's paths
+// moved by its offset, the travel from one part to the next asked of
+// `clear`. Entries are matched by layer and bond height and come in
+// make_paths' order (by layer, bonds by height before the layer's own).
+struct PlacedPaths {
+    const SupportPaths* paths = nullptr;
+    Point offset;
+};
+SupportPaths placed_paths(const std::vector<PlacedPaths>& parts, const TravelClear& clear);
+
+// The order a layer's paths print in: nearest first from the end of the
+// one before (the first as given), ties to the lower index; distances
+// between the places as written (three decimals). Indices into `paths`.
+std::vector<std::size_t> printing_order(const std::vector<Path>& paths);
+
 // The two side-by-side lines of a bar's layer, in printing order, each
 // reaching half a pillar radius past the bar's ends into the pillar tops.
 std::vector<std::vector<Point>> bar_lines(const plan::Bridge& br, double width, double pillar_radius);

@@ -405,9 +405,10 @@ std::vector<std::string> layer_shapes(const toolpath::SupportPaths& p) {
 
 }  // namespace
 
-// A plate's exact copies print one copy's paths moved, copy after copy on
-// each layer: the paths make_paths gives the copies' plans together, and the
-// travel from one copy to the next retracts as `clear` says.
+// A plate's exact copies print one copy's paths moved, on each layer in
+// the order make_paths gives a layer (nearest first over all copies): the
+// paths make_paths gives the copies' plans together. Every travel from a
+// copy to another is asked of `clear`.
 TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
@@ -420,32 +421,37 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
     ASSERT_FALSE(paths.layers.empty());
     // Two copies 25 mm apart along y: 22.55 mm between their beads.
     const std::vector<toolpath::Point> offsets{{0, 0}, {0, 25}};
-    int asked = 0;
+    int asked = 0;  // travels from one copy to the other asked
     const auto copied = toolpath::copied_paths(paths, offsets, 1.0, [&](int, const toolpath::Point& a, const toolpath::Point& b, double) {
-        ++asked;
-        EXPECT_LT(a.y, 22);  // from the first copy
-        EXPECT_GT(b.y, 40);  // to the second
+        asked += std::abs(a.y - b.y) > 15;
         return false;
     });
     ASSERT_TRUE(copied.has_value());
     ASSERT_EQ(copied->layers.size(), paths.layers.size());
-    EXPECT_EQ(asked, static_cast<int>(paths.layers.size()));  // once a layer: every layer has paths
+    int changes = 0;  // travels from one copy to the other
     for (std::size_t i = 0; i < paths.layers.size(); ++i) {
         const auto& a = paths.layers[i];
         const auto& m = copied->layers[i];
         EXPECT_EQ(m.layer, a.layer);
         ASSERT_EQ(m.paths.size(), 2 * a.paths.size());
-        for (std::size_t k = 0; k < a.paths.size(); ++k) {
-            const auto& p = a.paths[k];
-            const auto& q0 = m.paths[k];
-            const auto& q1 = m.paths[a.paths.size() + k];
-            ASSERT_EQ(q1.points.size(), p.points.size());
-            EXPECT_EQ(q0.points.front().y, p.points.front().y);
-            EXPECT_NEAR(q1.points.front().x, p.points.front().x, 1e-12);
-            EXPECT_NEAR(q1.points.back().y, p.points.back().y + 25, 1e-12);
-            EXPECT_EQ(q1.retract, k == 0 ? true : p.retract);  // clear said no: the travel between copies retracts
+        // Printed in make_paths' order over both copies' paths.
+        std::vector<toolpath::Path> both;
+        for (double dy : {0.0, 25.0})
+            for (toolpath::Path p : a.paths) {
+                for (auto& pt : p.points) pt.y += dy;
+                both.push_back(p);
+            }
+        const std::vector<std::size_t> order = toolpath::printing_order(both);
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            EXPECT_EQ(m.paths[k].points.front().x, both[order[k]].points.front().x);
+            EXPECT_EQ(m.paths[k].points.front().y, both[order[k]].points.front().y);
+            const bool other = k > 0 && (order[k] < a.paths.size()) != (order[k - 1] < a.paths.size());
+            changes += other;
+            if (other) EXPECT_TRUE(m.paths[k].retract);  // clear said no
         }
     }
+    EXPECT_EQ(asked, changes);
+    EXPECT_GE(changes, static_cast<int>(paths.layers.size()));  // at least once a layer: every layer has paths
     // The same paths, order aside, as the two copies' plans made together.
     plan::Scaffold both = one;
     for (plan::Column c : one.columns) {
@@ -458,7 +464,14 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
     // A travel between copies that clear lets go unretracted.
     const auto free = toolpath::copied_paths(paths, offsets, 1.0, [](int, const auto&, const auto&, double) { return true; });
     ASSERT_TRUE(free.has_value());
-    EXPECT_FALSE(free->layers.front().paths[paths.layers.front().paths.size()].retract);
+    int freed = 0;
+    for (const auto& lp : free->layers)
+        for (std::size_t k = 1; k < lp.paths.size(); ++k)
+            if ((lp.paths[k].points.front().y > 30) != (lp.paths[k - 1].points.front().y > 30)) {
+                EXPECT_FALSE(lp.paths[k].retract);
+                ++freed;
+            }
+    EXPECT_EQ(freed, changes);
 }
 
 // Copies whose supports come within `apart` of each other are no copies
@@ -497,4 +510,84 @@ TEST(SupportPaths, VolumeIsLengthTimesWidthTimesHeight) {
     EXPECT_NEAR(toolpath::paths_volume(paths, st), 1.2, 1e-12);
     toolpath::move_paths(paths, 7, -3);
     EXPECT_NEAR(toolpath::paths_volume(paths, st), 1.2, 1e-12);
+}
+
+// The printing order: nearest first from the last path's end, ties to the
+// lower index, on places as written. Many paths (a plate's layer) are
+// searched in a grid: the same order as comparing all, on a lattice of
+// exact ties (3 mm apart, every start twice) and on scattered starts.
+TEST(SupportPaths, PrintingOrderIsNearestFirstWithTiesToTheLowerIndex) {
+    auto brute = [](const std::vector<toolpath::Path>& paths) {
+        auto w = [](double v) { return std::round(v * 1000) / 1000; };
+        std::vector<std::size_t> out;
+        std::vector<bool> used(paths.size(), false);
+        toolpath::Point at = paths[0].points.front();
+        for (std::size_t n = 0; n < paths.size(); ++n) {
+            std::size_t best = 0;
+            double best_d = 1e300;
+            for (std::size_t i = 0; i < paths.size(); ++i) {
+                if (used[i]) continue;
+                const double dx = w(paths[i].points.front().x) - w(at.x), dy = w(paths[i].points.front().y) - w(at.y);
+                if (dx * dx + dy * dy < best_d) best_d = dx * dx + dy * dy, best = i;
+            }
+            used[best] = true;
+            at = paths[best].points.back();
+            out.push_back(best);
+        }
+        return out;
+    };
+    std::vector<toolpath::Path> lattice, scattered;
+    for (int copy = 0; copy < 2; ++copy)
+        for (int i = 0; i < 12; ++i)
+            for (int j = 0; j < 10; ++j)
+                lattice.push_back({{{3.0 * i, 3.0 * j}, {3.0 * i + 1, 3.0 * j}}, 0.45});
+    std::uint32_t seed = 12345;
+    auto next = [&] { return (seed = seed * 1664525u + 1013904223u) / 4294967296.0; };
+    for (int i = 0; i < 300; ++i) {
+        const double x = 200 * next(), y = 120 * next();
+        scattered.push_back({{{x, y}, {x + 4 * next() - 2, y + 4 * next() - 2}}, 0.45});
+    }
+    for (const auto* paths : {&lattice, &scattered}) {
+        const std::vector<std::size_t> order = toolpath::printing_order(*paths);
+        EXPECT_EQ(order, brute(*paths));
+        EXPECT_EQ(order.front(), 0u);
+    }
+    // The nearest: from (0, 0) -> (1, 0), the start at (0, 0) again (the
+    // other copy's, index 120) before the one at (3, 0).
+    EXPECT_EQ(toolpath::printing_order(lattice)[1], 120u);
+}
+
+// Copies whose supports meet are clustered (joined through each other):
+// loops 2 mm across, at x 0, 2.5 (0.5 mm between beads: meets the first),
+// 4.5 (meets the second only) and 30 (alone).
+TEST(SupportPaths, CopiesWhoseSupportsMeetAreClustered) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Scaffold one;
+    one.columns = {pillar(20, 20, 5)};
+    const toolpath::SupportPaths paths = toolpath::make_paths(one, st, s);
+    using Clusters = std::vector<std::vector<std::size_t>>;
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {30, 0}, {2.5, 0}, {5, 0}}, 1.0), (Clusters{{0, 2, 3}, {1}}));
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 1.0), (Clusters{{0}, {1}, {2}}));
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 3.5), (Clusters{{0, 1, 2}}));
+}
+
+// Parts of a plate made once and moved: two clusters of two copies each,
+// the second cluster's paths those of the first moved by its offset; the
+// same paths, order aside, as make_paths of all four.
+TEST(SupportPaths, ClustersMadeOnceAndMovedAreThePlatesPaths) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    auto pair_at = [](double x) {
+        plan::Scaffold p;
+        p.columns = {pillar(x, 20, 5), pillar(x + 2.5, 20, 5)};
+        return p;
+    };
+    const toolpath::SupportPaths first = toolpath::make_paths(pair_at(20), st, s);
+    const auto placed = toolpath::placed_paths({{&first, {0, 0}}, {&first, {30, 0}}}, {});
+    plan::Scaffold all = pair_at(20);
+    for (const plan::Column& c : pair_at(50).columns) all.columns.push_back(c);
+    EXPECT_EQ(layer_shapes(placed), layer_shapes(toolpath::make_paths(all, st, s)));
+    for (const auto& lp : placed.layers)
+        for (const auto& p : lp.paths) EXPECT_TRUE(p.retract);  // no clear: every travel retracts
 }
