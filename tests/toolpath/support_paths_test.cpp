@@ -475,7 +475,8 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
 }
 
 // Copies whose supports come within `apart` of each other are no copies
-// for this: their loops may merge, retrace or hold each other's spurs.
+// for this: their loops may merge, retrace or hold each other's spurs. They
+// are clustered, and each cluster made together.
 TEST(SupportPaths, CopiesWhoseSupportsMeetAreNotMoved) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
@@ -487,6 +488,12 @@ TEST(SupportPaths, CopiesWhoseSupportsMeetAreNotMoved) {
     EXPECT_FALSE(toolpath::copied_paths(paths, {{0, 0}, {30, 30}, {31.5, 32}}, 1.0, {}).has_value());
     // 5 mm apart leaves 3 mm: moved.
     EXPECT_TRUE(toolpath::copied_paths(paths, {{0, 0}, {5, 0}}, 1.0, {}).has_value());
+    // Clustered, joined through each other: at x 0, 30 (alone), 2.5 (meets
+    // the first) and 5 (meets the third only); 3.5 mm apart, all meet.
+    using Clusters = std::vector<std::vector<std::size_t>>;
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {30, 0}, {2.5, 0}, {5, 0}}, 1.0), (Clusters{{0, 2, 3}, {1}}));
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 1.0), (Clusters{{0}, {1}, {2}}));
+    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 3.5), (Clusters{{0, 1, 2}}));
 }
 
 // The paths' volume, length x width x height: on a 0.2 mm layer a 3-4-5
@@ -555,21 +562,6 @@ TEST(SupportPaths, PrintingOrderIsNearestFirstWithTiesToTheLowerIndex) {
     // The nearest: from (0, 0) -> (1, 0), the start at (0, 0) again (the
     // other copy's, index 120) before the one at (3, 0).
     EXPECT_EQ(toolpath::printing_order(lattice)[1], 120u);
-}
-
-// Copies whose supports meet are clustered (joined through each other):
-// loops 2 mm across, at x 0, 2.5 (0.5 mm between beads: meets the first),
-// 4.5 (meets the second only) and 30 (alone).
-TEST(SupportPaths, CopiesWhoseSupportsMeetAreClustered) {
-    Settings s;
-    const layers::LayerStack st = test::empty_stack(6);
-    plan::Scaffold one;
-    one.columns = {pillar(20, 20, 5)};
-    const toolpath::SupportPaths paths = toolpath::make_paths(one, st, s);
-    using Clusters = std::vector<std::vector<std::size_t>>;
-    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {30, 0}, {2.5, 0}, {5, 0}}, 1.0), (Clusters{{0, 2, 3}, {1}}));
-    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 1.0), (Clusters{{0}, {1}, {2}}));
-    EXPECT_EQ(toolpath::copy_clusters(paths, {{0, 0}, {5, 0}, {10, 0}}, 3.5), (Clusters{{0, 1, 2}}));
 }
 
 // Parts of a plate made once and moved: two clusters of two copies each,
