@@ -142,6 +142,10 @@ const char* words(const char* p, const char* end, Command& out) {
             // Bare axis letters are fine for homing ("G28 X") but not for moves.
             if (c == 'G' && (out.code <= 3 || out.code == 92)) return "parameter without a number";
         } else {
+            // A {placeholder} of the slicer's custom start or end code that
+            // was never filled in (CuraEngine run without its front end
+            // leaves "G1 X0 Y{machine_depth}").
+            if (*p == '{') return "a slicer placeholder left unfilled ({...}: the slicer's custom G-code was not expanded)";
             const char* r = read_number(p, end, value);
             if (!r) return "malformed number";
             p = r;

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "gcode/lexer.hpp"
 
 using scaffold::gcode::Command;
@@ -49,6 +51,8 @@ TEST(Lexer, MalformedNumbersAreReported) {
     EXPECT_STRNE(lex("G1 Xnan", c), "");
     EXPECT_STRNE(lex("G1 Xinf", c), "");
     EXPECT_STRNE(lex("G", c), "");
+    // A custom G-code placeholder the slicer did not fill in says so.
+    EXPECT_EQ(std::string(lex("G1 X0 Y{machine_depth} ;Present print", c)).rfind("a slicer placeholder left unfilled", 0), 0u);
 }
 
 // A post-processor passes through what it does not need: only the commands
