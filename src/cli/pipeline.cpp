@@ -541,22 +541,13 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
                 return obstacles.segment_clear(layer, a.x - o.dx, a.y - o.dy, b.x - o.dx, b.y - o.dy, width);
         return false;
     };
-    // The first copy's paths moved to each, where the copies' supports stand
-    // apart; else all made at once: where two copies' columns meet between
-    // them they are printed as one, as a plan's own columns are.
+    // Copies whose supports stand apart print the first copy's paths moved.
     // Copies whose columns meet (an elephant's between its neighbour's
     // legs) are made together, once for each arrangement of such a cluster
-    // (the same copies' offsets from its first) and moved to the others.
+    // (the same copies' offsets from its first), and moved to the others.
     std::vector<toolpath::Point> at;
     for (const layers::Offset& o : copies.offsets) at.push_back({o.dx, o.dy});
     const std::vector<std::vector<std::size_t>> clusters = toolpath::copy_clusters(one.paths, at, kCopiesApart);
-    std::vector<toolpath::PlacedPaths> parts;
-    if (clusters.size() == n) {
-        for (const toolpath::Point& o : at) parts.push_back({&one.paths, o});
-        log.debug("the first copy's paths moved to the others");
-    }
-    std::vector<std::size_t> first_of_shape;  // a cluster of each arrangement
-    std::vector<toolpath::SupportPaths> made;  // its paths
     auto same_shape = [&](const std::vector<std::size_t>& a, const std::vector<std::size_t>& b) {
         if (a.size() != b.size()) return false;
         for (std::size_t i = 1; i < a.size(); ++i)
@@ -565,33 +556,45 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
                 return false;
         return true;
     };
-    if (clusters.size() < n) {
-        std::vector<std::size_t> shape_of(clusters.size());
-        for (std::size_t c = 0; c < clusters.size(); ++c) {
-            std::size_t s = 0;
-            while (s < first_of_shape.size() && !same_shape(clusters[first_of_shape[s]], clusters[c])) ++s;
-            if (s == first_of_shape.size()) first_of_shape.push_back(c);
-            shape_of[c] = s;
-        }
-        // Copy k's columns and bars are the k-th of merge_plans' equal shares.
-        const std::size_t nc = out.scaffold.columns.size() / n, nb = out.scaffold.bridges.size() / n;
-        made.resize(first_of_shape.size());
-        for (std::size_t s = 0; s < first_of_shape.size(); ++s) {
-            plan::Scaffold part;
-            for (std::size_t k : clusters[first_of_shape[s]]) {
-                part.columns.insert(part.columns.end(), out.scaffold.columns.begin() + static_cast<long>(k * nc),
-                                    out.scaffold.columns.begin() + static_cast<long>((k + 1) * nc));
-                part.bridges.insert(part.bridges.end(), out.scaffold.bridges.begin() + static_cast<long>(k * nb),
-                                    out.scaffold.bridges.begin() + static_cast<long>((k + 1) * nb));
-            }
-            made[s] = toolpath::make_paths(part, stack, settings, clear);
-        }
-        for (std::size_t c = 0; c < clusters.size(); ++c) {
-            const std::size_t rep = clusters[first_of_shape[shape_of[c]]].front(), k = clusters[c].front();
-            parts.push_back({&made[shape_of[c]], {at[k].x - at[rep].x, at[k].y - at[rep].y}});
-        }
-        log.debug("{} clusters of copies whose supports meet, {} arrangements made", clusters.size(), first_of_shape.size());
+    std::vector<std::size_t> first_of_shape, shape_of(clusters.size());  // a cluster of each arrangement
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+        std::size_t s = 0;
+        while (s < first_of_shape.size() && !same_shape(clusters[first_of_shape[s]], clusters[c])) ++s;
+        if (s == first_of_shape.size()) first_of_shape.push_back(c);
+        shape_of[c] = s;
     }
+    // Each arrangement's paths and the copy they stand at: a lone copy's are
+    // the first copy's; a cluster's are made (copy k's columns and bars are
+    // the k-th of merge_plans' equal shares).
+    const std::size_t nc = out.scaffold.columns.size() / n, nb = out.scaffold.bridges.size() / n;
+    std::vector<toolpath::SupportPaths> made(first_of_shape.size());
+    std::vector<const toolpath::SupportPaths*> shape_paths;
+    std::vector<std::size_t> shape_at;
+    for (std::size_t s = 0; s < first_of_shape.size(); ++s) {
+        const std::vector<std::size_t>& cluster = clusters[first_of_shape[s]];
+        if (cluster.size() == 1) {
+            shape_paths.push_back(&one.paths);
+            shape_at.push_back(0);
+            continue;
+        }
+        plan::Scaffold part;
+        for (std::size_t k : cluster) {
+            part.columns.insert(part.columns.end(), out.scaffold.columns.begin() + static_cast<long>(k * nc),
+                                out.scaffold.columns.begin() + static_cast<long>((k + 1) * nc));
+            part.bridges.insert(part.bridges.end(), out.scaffold.bridges.begin() + static_cast<long>(k * nb),
+                                out.scaffold.bridges.begin() + static_cast<long>((k + 1) * nb));
+        }
+        made[s] = toolpath::make_paths(part, stack, settings, clear);
+        shape_paths.push_back(&made[s]);
+        shape_at.push_back(cluster.front());
+    }
+    std::vector<toolpath::PlacedPaths> parts;
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+        const std::size_t base = shape_at[shape_of[c]], k = clusters[c].front();
+        parts.push_back({shape_paths[shape_of[c]], {at[k].x - at[base].x, at[k].y - at[base].y}});
+    }
+    if (clusters.size() == n) log.debug("the first copy's paths moved to the others");
+    else log.debug("{} clusters of copies whose supports meet, {} arrangements made", clusters.size(), first_of_shape.size());
     out.paths = toolpath::placed_paths(parts, clear);
     log.debug("the copies' paths made: {:.0f} ms", ms_between(t1, Clock::now()));
     return out;

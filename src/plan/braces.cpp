@@ -5,7 +5,6 @@
 #include <bit>
 #include <climits>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -29,7 +28,6 @@ constexpr double kMinAngleDeg = 30.0;
 // need their ends' loops apart, 2 mm at the least).
 constexpr double kMinSide = 1.0;
 
-// The smallest angle of triangle abc, degrees.
 // mm: two beads' edges nearer than this may join into one island.
 constexpr double kTouch = 0.3;
 
@@ -47,6 +45,7 @@ double segments_distance(const Bridge& a, const Bridge& b) {
                      layers::segment_distance(b.x1, b.y1, a.x0, a.y0, a.x1, a.y1)});
 }
 
+// The smallest angle of triangle abc, degrees.
 double min_angle(double ax, double ay, double bx, double by, double cx, double cy) {
     auto angle = [](double px, double py, double qx, double qy, double rx, double ry) {
         const double ux = qx - px, uy = qy - py, vx = rx - px, vy = ry - py;
@@ -389,12 +388,12 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         }
         return std::nullopt;
     };
-    // The bar between two columns at height b, from loop to loop, when it is clear.
     // The corners of the triangles placed, at each height they are tied.
     struct Placed {
         double b, x, y, rc;
     };
     std::vector<Placed> placed;
+    // The bar between two columns at height b, from loop to loop, when it is clear.
     auto bar = [&](const At& p, const At& q, double b) -> std::optional<Bridge> {
         const double d = std::hypot(q.x - p.x, q.y - p.y);
         if (d <= p.rc + q.rc + 2 * w + 0.5 || d > kBraceReach) return std::nullopt;
@@ -437,31 +436,29 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             if (!a || !p || !q || min_angle(a->x, a->y, p->x, p->y, q->x, q->y) < kMinAngleDeg) return {};
             auto ap = bar(*a, *p, b), aq = bar(*a, *q, b), pq = bar(*p, *q, b);
             if (!ap || !aq || !pq) return {};
-            out.insert(out.end(), {*ap, *aq, *pq});
-        }
-        // Apart from every triangle tied at the same height: bars or
-        // corners that touch make one island of both, whose columns METHOD
-        // judges from its own centroid (two triangles sharing a corner, 5
-        // columns strung east to west from it: no brace, and each column
-        // above walks down to the bed; Cura's four bunnies, 1.36 N/mm).
-        for (double b : levels) {
-            const double zc = bar_layers(b).front().first;
-            const std::array<std::optional<At>, 3> corners{at(W, b, zc), at(P, b, zc), at(Q, b, zc)};
+            // Apart from every triangle tied at the same height: bars or
+            // corners that touch make one island of both, whose columns
+            // METHOD judges from its own centroid (two triangles sharing a
+            // corner, 5 columns strung east to west from it: no brace, and
+            // each column above walks down to the bed; Cura's four bunnies,
+            // 1.36 N/mm).
+            const std::array<At, 3> corners{*a, *p, *q};
+            const std::array<Bridge, 3> bars{*ap, *aq, *pq};
             for (const Placed& c : placed) {
                 if (std::abs(c.b - b) > kEps) continue;
-                for (const auto& n : corners)
-                    if (std::hypot(n->x - c.x, n->y - c.y) < n->rc + c.rc + 2 * w + kTouch) return {};
-                for (const Bridge& nb : out)
-                    if (std::abs(nb.z - b) < kEps && layers::segment_distance(c.x, c.y, nb.x0, nb.y0, nb.x1, nb.y1) < c.rc + 1.5 * w + kTouch)
-                        return {};
+                for (const At& n : corners)
+                    if (std::hypot(n.x - c.x, n.y - c.y) < n.rc + c.rc + 2 * w + kTouch) return {};
+                for (const Bridge& nb : bars)
+                    if (layers::segment_distance(c.x, c.y, nb.x0, nb.y0, nb.x1, nb.y1) < c.rc + 1.5 * w + kTouch) return {};
             }
             for (const Bridge& ob : sc.bridges) {
                 if (!ob.brace || std::abs(ob.z - b) > kEps) continue;
-                for (const auto& n : corners)
-                    if (layers::segment_distance(n->x, n->y, ob.x0, ob.y0, ob.x1, ob.y1) < n->rc + 1.5 * w + kTouch) return {};
-                for (const Bridge& nb : out)
-                    if (std::abs(nb.z - b) < kEps && segments_distance(nb, ob) < 2 * w + kTouch) return {};
+                for (const At& n : corners)
+                    if (layers::segment_distance(n.x, n.y, ob.x0, ob.y0, ob.x1, ob.y1) < n.rc + 1.5 * w + kTouch) return {};
+                for (const Bridge& nb : bars)
+                    if (segments_distance(nb, ob) < 2 * w + kTouch) return {};
             }
+            out.insert(out.end(), bars.begin(), bars.end());
         }
         // Last: the walk sums every layer of the three pillars at each tie.
         if (!nodes_stand(W, P, Q, levels, give, ids)) return {};

@@ -155,9 +155,6 @@ bool line_held(const Point& a, const Point& b, const std::vector<Bead>& beads, c
     return every_held(p) || fail();
 }
 
-// What lies beneath layer `l` as METHOD and the validator take it: the
-// model within one nominal layer (its layers beneath), support printed up to
-// three nominal layers down (`printed`), and the model of the layer itself.
 // The support printed up to three nominal layers under layer `l`.
 void gather_support(int l, const std::vector<LayerPaths>& printed, const layers::LayerStack& stack,
                     const Settings& settings, std::vector<Bead>& beads) {
@@ -172,6 +169,9 @@ void gather_support(int l, const std::vector<LayerPaths>& printed, const layers:
     }
 }
 
+// What lies beneath layer `l` as METHOD and the validator take it: the
+// model within one nominal layer (its layers beneath), support printed up to
+// three nominal layers down (`printed`), and the model of the layer itself.
 void gather_beneath(int l, const std::vector<LayerPaths>& printed, const layers::LayerStack& stack,
                     const Settings& settings, std::vector<Bead>& beads, std::vector<Bead>& here) {
     const layers::Layer& layer = stack.layers[l];

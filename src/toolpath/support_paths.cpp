@@ -208,13 +208,15 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
 
 }  // namespace
 
+// Layers with this many paths (a plate's) are ordered with a grid of their starts.
+constexpr std::size_t kGridOrderFrom = 64;
+
 // Nearest-first order from the previous path's end; ties keep the input
 // order. Measured between the places as the file will hold them (three
 // decimals): loops on a grid (--method pillars) tie exactly, and their
 // ends, from sin and cos, differ in the last bit between C libraries, so
 // the raw distances broke the tie one way on Linux and the other on
 // Windows (anchor.cura413). As indices into `paths`.
-constexpr std::size_t kGridOrderFrom = 64;
 std::vector<std::size_t> printing_order(const std::vector<Path>& paths) {
     const std::size_t n = paths.size();
     std::vector<std::size_t> out;
@@ -293,7 +295,6 @@ void order_paths(std::vector<Path>& paths) {
     for (std::size_t i : order) out.push_back(std::move(paths[i]));
     paths = std::move(out);
 }
-
 
 // A bar passing beside a column it does not rest on, its line within the
 // reach of the column's loop beneath but along the loop's edge, is held
@@ -788,14 +789,6 @@ SupportPaths placed_paths(const std::vector<PlacedPaths>& parts, const TravelCle
         }
     }
     return out;
-}
-
-std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
-                                         const TravelClear& clear) {
-    if (copy_clusters(one, offsets, apart).size() != offsets.size()) return std::nullopt;
-    std::vector<PlacedPaths> parts;
-    for (const Point& o : offsets) parts.push_back({&one, o});
-    return placed_paths(parts, clear);
 }
 
 double paths_volume(const SupportPaths& paths, const layers::LayerStack& stack) {

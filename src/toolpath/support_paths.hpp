@@ -3,7 +3,6 @@
 // (tapered tips, flared feet), raft squares on the first layer, and bridge
 // lines. Plain geometry with width, height and speed; splice/ writes G-code.
 #include <functional>
-#include <optional>
 #include <vector>
 
 #include "layers/layer_stack.hpp"
@@ -82,22 +81,15 @@ using TravelClear = std::function<bool(int layer, const Point& a, const Point& b
 SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack& stack, const Settings& settings,
                         const TravelClear& clear);
 
-// Copies of one plan (a plate's exact copies): `one`'s paths moved by each
-// offset ((0, 0) first), each layer printing copy after copy in the
-// offsets' order, the travel from one copy to the next asked of `clear`.
-// Only where no two copies' paths (their widths included) come within
-// `apart` mm of each other, so no loop, raft, bond or spur of one meets
-// another's: else nullopt. make_paths of the copies' plans together then
-// gives the same paths but for their order and, where two of a copy's own
-// loops nearly retrace each other, which of them it keeps (the columns
-// come in another order): these are the paths the copy was checked with.
-std::optional<SupportPaths> copied_paths(const SupportPaths& one, const std::vector<Point>& offsets, double apart,
-                                         const TravelClear& clear);
-
 // The copies (`one`'s paths moved by each offset) in clusters: those whose
 // paths come within `apart` mm of each other (widths included) joined, and
 // so on. Each cluster's copies ascending, clusters by their first copy; a
-// cluster a copy where all stand apart.
+// cluster a copy where all stand apart. Clusters `apart` apart share no
+// loop, raft, bond or spur, so each may print paths made for it alone
+// (for a lone copy, `one`: the paths its plan was checked with). make_paths
+// of all copies' plans together gives the same paths but for their order
+// and, where two of a copy's own loops nearly retrace each other, which of
+// them it keeps.
 std::vector<std::vector<std::size_t>> copy_clusters(const SupportPaths& one, const std::vector<Point>& offsets,
                                                     double apart);
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "plan/pillars.hpp"
 #include "support/stacks.hpp"
@@ -390,6 +391,17 @@ TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
 
 namespace {
 
+// What the pipeline prints for a plate of copies whose supports all stand
+// apart: one copy's paths placed at every offset; nothing where two meet.
+std::optional<toolpath::SupportPaths> copied_paths(const toolpath::SupportPaths& one,
+                                                   const std::vector<toolpath::Point>& offsets, double apart,
+                                                   const toolpath::TravelClear& clear) {
+    if (toolpath::copy_clusters(one, offsets, apart).size() != offsets.size()) return std::nullopt;
+    std::vector<toolpath::PlacedPaths> parts;
+    for (const toolpath::Point& o : offsets) parts.push_back({&one, o});
+    return toolpath::placed_paths(parts, clear);
+}
+
 // Each layer's paths as text, in a fixed order (order aside).
 std::vector<std::string> layer_shapes(const toolpath::SupportPaths& p) {
     std::vector<std::string> out;
@@ -422,7 +434,7 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
     // Two copies 25 mm apart along y: 22.55 mm between their beads.
     const std::vector<toolpath::Point> offsets{{0, 0}, {0, 25}};
     int asked = 0;  // travels from one copy to the other asked
-    const auto copied = toolpath::copied_paths(paths, offsets, 1.0, [&](int, const toolpath::Point& a, const toolpath::Point& b, double) {
+    const auto copied = copied_paths(paths, offsets, 1.0, [&](int, const toolpath::Point& a, const toolpath::Point& b, double) {
         asked += std::abs(a.y - b.y) > 15;
         return false;
     });
@@ -447,7 +459,9 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
             EXPECT_EQ(m.paths[k].points.front().y, both[order[k]].points.front().y);
             const bool other = k > 0 && (order[k] < a.paths.size()) != (order[k - 1] < a.paths.size());
             changes += other;
-            if (other) EXPECT_TRUE(m.paths[k].retract);  // clear said no
+            if (other) {
+                EXPECT_TRUE(m.paths[k].retract);  // clear said no
+            }
         }
     }
     EXPECT_EQ(asked, changes);
@@ -462,7 +476,7 @@ TEST(SupportPaths, CopiesStandingApartPrintOneCopysPathsMoved) {
     both.bridges.push_back(bar);
     EXPECT_EQ(layer_shapes(*copied), layer_shapes(toolpath::make_paths(both, st, s)));
     // A travel between copies that clear lets go unretracted.
-    const auto free = toolpath::copied_paths(paths, offsets, 1.0, [](int, const auto&, const auto&, double) { return true; });
+    const auto free = copied_paths(paths, offsets, 1.0, [](int, const auto&, const auto&, double) { return true; });
     ASSERT_TRUE(free.has_value());
     int freed = 0;
     for (const auto& lp : free->layers)
@@ -484,10 +498,10 @@ TEST(SupportPaths, CopiesWhoseSupportsMeetAreNotMoved) {
     one.columns = {pillar(20, 20, 5)};
     const toolpath::SupportPaths paths = toolpath::make_paths(one, st, s);
     // Loops 2 mm wide: 2.5 mm apart leaves 0.5 mm between the beads.
-    EXPECT_FALSE(toolpath::copied_paths(paths, {{0, 0}, {2.5, 0}}, 1.0, {}).has_value());
-    EXPECT_FALSE(toolpath::copied_paths(paths, {{0, 0}, {30, 30}, {31.5, 32}}, 1.0, {}).has_value());
+    EXPECT_FALSE(copied_paths(paths, {{0, 0}, {2.5, 0}}, 1.0, {}).has_value());
+    EXPECT_FALSE(copied_paths(paths, {{0, 0}, {30, 30}, {31.5, 32}}, 1.0, {}).has_value());
     // 5 mm apart leaves 3 mm: moved.
-    EXPECT_TRUE(toolpath::copied_paths(paths, {{0, 0}, {5, 0}}, 1.0, {}).has_value());
+    EXPECT_TRUE(copied_paths(paths, {{0, 0}, {5, 0}}, 1.0, {}).has_value());
     // Clustered, joined through each other: at x 0, 30 (alone), 2.5 (meets
     // the first) and 5 (meets the third only); 3.5 mm apart, all meet.
     using Clusters = std::vector<std::vector<std::size_t>>;
