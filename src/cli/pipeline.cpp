@@ -257,11 +257,15 @@ struct GroupPlanned {
     overhang::SupportPoints points;
     plan::Scaffold scaffold;
     toolpath::SupportPaths paths;
+    // The bars (and places) its rounds found not held as built: where this
+    // group is joined with another, the joined plan starts without them.
+    plan::Forbidden learned;
 };
 
 GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const plan::Obstacles& obstacles, const Settings& settings,
-                        SharedCavities& cavities, spdlog::logger& log, Progress* progress, int threads = 1) {
+                        SharedCavities& cavities, spdlog::logger& log, Progress* progress, int threads = 1,
+                        const plan::Forbidden& start = {}) {
     const auto hollows = [&]() -> const plan::Cavities& { return cavities.get(obstacles); };
     // The bridge search's other threads, each asking the model through
     // caches of its own, kept over the rounds as the first thread's are.
@@ -418,7 +422,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // does not count: the plan made again without such bars, kept where it
     // holds every bar and costs less (75-file sweep: 3.1 % less support, a
     // figure 37 %, bunny 4.8 %; a second attempt found more, a third none).
-    Attempt best = attempt({});
+    Attempt best = attempt(start);
+    plan::Forbidden learned = best.forbidden;
     for (int k = 0; k < kUnbracedAttempts && best.bars_held && !best.braced.empty(); ++k) {
         plan::Forbidden without = best.forbidden;
         for (std::size_t i : best.braced) without.bars.push_back(best.scaffold.bridges[i]);
@@ -467,7 +472,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         log.debug("{} brace bars not held as built: left out", bad.size());
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     }
-    return {std::move(points), std::move(scaffold), std::move(paths)};
+    return {std::move(points), std::move(scaffold), std::move(paths), std::move(learned)};
 }
 
 // A plate of exact copies (layers::Copies): the first copy's plan (its
@@ -648,6 +653,8 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
     std::vector<plan::GroupPlan> plans(groups.size());
     std::vector<plan::PlanReach> reach(groups.size());  // each plan's, for plans_apart
+    // What each group's plans found not held, and what a joined group starts without.
+    std::vector<plan::Forbidden> learned(groups.size()), start(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -670,8 +677,9 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, nullptr);
+                                               cavities, log, nullptr, 1, start[g]);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
+                learned[g] = std::move(done.learned);
                 if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
             },
             heavy >= 2 ? 0.0 : req.second_thread_after_s);
@@ -692,6 +700,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         std::vector<plan::PointGroup> next;
         std::vector<plan::GroupPlan> kept;
         std::vector<plan::PlanReach> kept_reach;
+        std::vector<plan::Forbidden> kept_learned;
         std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
         for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -701,10 +710,17 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 next.push_back(std::move(groups[g]));
                 kept.push_back(std::move(plans[g]));
                 kept_reach.push_back(std::move(reach[g]));
+                kept_learned.push_back(std::move(learned[g]));
                 again.push_back(0);
             } else {
                 next[at[r]] = plan::joined(next[at[r]], groups[g]);
                 again[at[r]] = 1;
+                // Bars its parts' plans found not held, found again by the
+                // joined plan's rounds, each a plan of the whole (four Cura
+                // bunnies: 4 bars, then 1, then 1, as in the parts' plans).
+                plan::Forbidden& into_learned = kept_learned[at[r]];
+                into_learned.bars.insert(into_learned.bars.end(), learned[g].bars.begin(), learned[g].bars.end());
+                into_learned.places.insert(into_learned.places.end(), learned[g].places.begin(), learned[g].places.end());
             }
         }
         // Still ordered by their lowest index: a joined group keeps its root's place.
@@ -715,6 +731,15 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         plans = std::move(kept);
         reach = std::move(kept_reach);
         todo = std::move(again);
+        start.assign(groups.size(), {});
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            if (!todo[g]) continue;
+            start[g] = kept_learned[g];
+            if (!start[g].empty())
+                log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",
+                          start[g].bars.size(), start[g].places.size());
+        }
+        learned = std::move(kept_learned);
     }
     own.clear();
     GroupPlanned all;
