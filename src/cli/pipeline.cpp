@@ -257,8 +257,9 @@ struct GroupPlanned {
     overhang::SupportPoints points;
     plan::Scaffold scaffold;
     toolpath::SupportPaths paths;
-    // The bars (and places) its rounds found not held as built: where this
-    // group is joined with another, the joined plan starts without them.
+    // The bars (and places) its first plan's rounds were made again without
+    // (not held as built, or on a column short of the Standing rule): where
+    // this group is joined with another, the joined plan starts without them.
     plan::Forbidden learned;
 };
 
