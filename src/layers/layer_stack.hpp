@@ -39,6 +39,20 @@ inline double segment_distance(double px, double py, const Segment& s) {
     return std::hypot(px - (s.x0 + dx * t), py - (s.y0 + dy * t));
 }
 
+// Least distance between segments (ax0, ay0)-(ax1, ay1) and
+// (bx0, by0)-(bx1, by1): 0 where they cross.
+inline double segments_distance(double ax0, double ay0, double ax1, double ay1, double bx0, double by0, double bx1,
+                                double by1) {
+    auto side = [](double ox, double oy, double px, double py, double qx, double qy) {
+        return (px - ox) * (qy - oy) - (py - oy) * (qx - ox);
+    };
+    const double d1 = side(ax0, ay0, ax1, ay1, bx0, by0), d2 = side(ax0, ay0, ax1, ay1, bx1, by1);
+    const double d3 = side(bx0, by0, bx1, by1, ax0, ay0), d4 = side(bx0, by0, bx1, by1, ax1, ay1);
+    if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return 0;
+    return std::min({segment_distance(ax0, ay0, bx0, by0, bx1, by1), segment_distance(ax1, ay1, bx0, by0, bx1, by1),
+                     segment_distance(bx0, by0, ax0, ay0, ax1, ay1), segment_distance(bx1, by1, ax0, ay0, ax1, ay1)});
+}
+
 struct Layer {
     double z = 0;              // top of the layer (the nozzle height)
     double height = 0;         // z minus the z of the layer below

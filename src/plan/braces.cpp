@@ -31,20 +31,6 @@ constexpr double kMinSide = 1.0;
 // mm: two beads' edges nearer than this may join into one island.
 constexpr double kTouch = 0.3;
 
-// The least distance between two bars' centre lines (0 where they cross).
-double segments_distance(const Bridge& a, const Bridge& b) {
-    auto cross = [](double ox, double oy, double ax, double ay, double bx, double by) {
-        return (ax - ox) * (by - oy) - (ay - oy) * (bx - ox);
-    };
-    const double d1 = cross(a.x0, a.y0, a.x1, a.y1, b.x0, b.y0), d2 = cross(a.x0, a.y0, a.x1, a.y1, b.x1, b.y1);
-    const double d3 = cross(b.x0, b.y0, b.x1, b.y1, a.x0, a.y0), d4 = cross(b.x0, b.y0, b.x1, b.y1, a.x1, a.y1);
-    if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return 0;
-    return std::min({layers::segment_distance(a.x0, a.y0, b.x0, b.y0, b.x1, b.y1),
-                     layers::segment_distance(a.x1, a.y1, b.x0, b.y0, b.x1, b.y1),
-                     layers::segment_distance(b.x0, b.y0, a.x0, a.y0, a.x1, a.y1),
-                     layers::segment_distance(b.x1, b.y1, a.x0, a.y0, a.x1, a.y1)});
-}
-
 // The smallest angle of triangle abc, degrees.
 double min_angle(double ax, double ay, double bx, double by, double cx, double cy) {
     auto angle = [](double px, double py, double qx, double qy, double rx, double ry) {
@@ -446,17 +432,18 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             const std::array<Bridge, 3> bars{*ap, *aq, *pq};
             for (const Placed& c : placed) {
                 if (std::abs(c.b - b) > kEps) continue;
-                for (const At& n : corners)
-                    if (std::hypot(n.x - c.x, n.y - c.y) < n.rc + c.rc + 2 * w + kTouch) return {};
+                for (const At& k : corners)
+                    if (std::hypot(k.x - c.x, k.y - c.y) < k.rc + c.rc + 2 * w + kTouch) return {};
                 for (const Bridge& nb : bars)
                     if (layers::segment_distance(c.x, c.y, nb.x0, nb.y0, nb.x1, nb.y1) < c.rc + 1.5 * w + kTouch) return {};
             }
             for (const Bridge& ob : sc.bridges) {
                 if (!ob.brace || std::abs(ob.z - b) > kEps) continue;
-                for (const At& n : corners)
-                    if (layers::segment_distance(n.x, n.y, ob.x0, ob.y0, ob.x1, ob.y1) < n.rc + 1.5 * w + kTouch) return {};
+                for (const At& k : corners)
+                    if (layers::segment_distance(k.x, k.y, ob.x0, ob.y0, ob.x1, ob.y1) < k.rc + 1.5 * w + kTouch) return {};
                 for (const Bridge& nb : bars)
-                    if (segments_distance(nb, ob) < 2 * w + kTouch) return {};
+                    if (layers::segments_distance(nb.x0, nb.y0, nb.x1, nb.y1, ob.x0, ob.y0, ob.x1, ob.y1) < 2 * w + kTouch)
+                        return {};
             }
             out.insert(out.end(), bars.begin(), bars.end());
         }

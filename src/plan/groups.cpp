@@ -137,20 +137,6 @@ namespace {
 // its foot, and a neighbour's bar higher up need not keep clear of that.
 constexpr double kSlice = 2.0;
 
-double segments_distance(const layers::Segment& a, const layers::Segment& b) {
-    auto crosses = [](const layers::Segment& p, const layers::Segment& q) {
-        auto side = [](double ax, double ay, double bx, double by, double cx, double cy) {
-            return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
-        };
-        const double d1 = side(p.x0, p.y0, p.x1, p.y1, q.x0, q.y0), d2 = side(p.x0, p.y0, p.x1, p.y1, q.x1, q.y1);
-        const double d3 = side(q.x0, q.y0, q.x1, q.y1, p.x0, p.y0), d4 = side(q.x0, q.y0, q.x1, q.y1, p.x1, p.y1);
-        return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
-    };
-    if (crosses(a, b)) return 0;
-    return std::min({layers::segment_distance(a.x0, a.y0, b), layers::segment_distance(a.x1, a.y1, b),
-                     layers::segment_distance(b.x0, b.y0, a), layers::segment_distance(b.x1, b.y1, a)});
-}
-
 }  // namespace
 
 PlanReach plan_reach(const Scaffold& sc, const Settings& s) {
@@ -203,7 +189,9 @@ bool plans_apart(const PlanReach& a, const PlanReach& b) {
             if (q.x0 > p.x1 + kPlansApart || p.x0 > q.x1 + kPlansApart || q.y0 > p.y1 + kPlansApart ||
                 p.y0 > q.y1 + kPlansApart)
                 continue;
-            if (segments_distance(p.seg, q.seg) < p.r + q.r + kPlansApart) return false;
+            if (layers::segments_distance(p.seg.x0, p.seg.y0, p.seg.x1, p.seg.y1, q.seg.x0, q.seg.y0, q.seg.x1, q.seg.y1) <
+                p.r + q.r + kPlansApart)
+                return false;
         }
     return true;
 }
