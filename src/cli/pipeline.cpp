@@ -654,8 +654,9 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
     std::vector<plan::GroupPlan> plans(groups.size());
     std::vector<plan::PlanReach> reach(groups.size());  // each plan's, for plans_apart
-    // What each group's plans found not held, and what a joined group starts without.
-    std::vector<plan::Forbidden> learned(groups.size()), start(groups.size());
+    // What each group's plans were made again without; a joined group's
+    // plan starts without what its parts' were.
+    std::vector<plan::Forbidden> learned(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -678,7 +679,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, nullptr, 1, start[g]);
+                                               cavities, log, nullptr, 1, learned[g]);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
                 learned[g] = std::move(done.learned);
                 if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
@@ -732,15 +733,11 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         plans = std::move(kept);
         reach = std::move(kept_reach);
         todo = std::move(again);
-        start.assign(groups.size(), {});
-        for (std::size_t g = 0; g < groups.size(); ++g) {
-            if (!todo[g]) continue;
-            start[g] = kept_learned[g];
-            if (!start[g].empty())
-                log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",
-                          start[g].bars.size(), start[g].places.size());
-        }
         learned = std::move(kept_learned);
+        for (std::size_t g = 0; g < groups.size(); ++g)
+            if (todo[g] && !learned[g].empty())
+                log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",
+                          learned[g].bars.size(), learned[g].places.size());
     }
     own.clear();
     GroupPlanned all;
