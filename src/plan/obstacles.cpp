@@ -440,8 +440,12 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
     }
     if (up != columns_.begin() && (*std::prev(up))->lookup(layer, x, y, kFastBudget, fast_bytes_) == 0) return 0;
     // The same radius comes many times in a row (one column, layer by layer).
+    // A taper asks a new radius every layer, from a set that recurs: the
+    // radii seen lately are kept by their bits before the map is asked.
     if (!last_fast_ || last_r_ != r) {
-        last_fast_ = &fast_[r];
+        RecentFast& slot = recent_fast_[(std::bit_cast<std::uint64_t>(r) * 0x9E3779B97F4A7C15ull) >> 58];
+        if (!slot.fast || slot.r != r) slot = {r, &fast_[r]};
+        last_fast_ = slot.fast;
         last_r_ = r;
     }
     Fast& f = *last_fast_;

@@ -2,9 +2,10 @@
 // What the planner must keep clear of: the model, per layer, as rasters.
 // Answers "is a disc free of the model (plus the gap) on layer L" and "where
 // is the model top under a column", so pillars and bridges never hit it.
+#include <array>
 #include <cstdint>
 #include <limits>
-#include <map>
+#include <unordered_map>
 #include <memory>
 #include <vector>
 
@@ -190,9 +191,14 @@ private:
     std::shared_ptr<const std::vector<layers::BitGrid>> shared_model_;
     const std::vector<layers::BitGrid>& model_;  // *shared_model_: per layer, same index as the LayerStack
     mutable std::vector<layers::BitGrid> grown_;  // model_ dilated by `inflate`, lazily
-    mutable std::map<double, Fast> fast_;   // by radius
+    mutable std::unordered_map<double, Fast> fast_;  // by radius (a taper asks a new one every layer)
     mutable Fast* last_fast_ = nullptr;     // the last radius asked (map nodes stay put)
     mutable double last_r_ = 0;
+    struct RecentFast {
+        double r = 0;
+        Fast* fast = nullptr;
+    };
+    mutable std::array<RecentFast, 64> recent_fast_{};  // by the radius' bits, hashed
     mutable std::size_t fast_bytes_ = 0;
     mutable std::vector<DiscLookup*> columns_;  // the Columns lookups of fast_, by radius
     // Layers lo..hi on which a disc of radius up to r at (x, y) surely

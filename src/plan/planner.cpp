@@ -386,15 +386,59 @@ bool passes_near(const Bridge& b, double x, double y, double r) {
 
 }  // namespace
 
-bool near_forbidden(const Forbidden& forbidden, const Bridge& b, double layer_height) {
+namespace {
+
+// Whether the box around b's ends, grown by m, meets the box around
+// (x0, y0), (x1, y1): no point of b comes within m of that segment otherwise.
+bool boxes_meet(const Bridge& b, double x0, double y0, double x1, double y1, double m) {
+    return std::min(b.x0, b.x1) - m <= std::max(x0, x1) && std::min(x0, x1) <= std::max(b.x0, b.x1) + m &&
+           std::min(b.y0, b.y1) - m <= std::max(y0, y1) && std::min(y0, y1) <= std::max(b.y0, b.y1) + m;
+}
+
+bool near_place(const Xyz& f, const Bridge& b, double layer_height) {
+    return std::abs(f.z - b.z) < kPlaceLayers * layer_height + 1e-9 && boxes_meet(b, f.x, f.y, f.x, f.y, kPlaceNear) &&
+           passes_near(b, f.x, f.y, kPlaceNear);
+}
+
+bool near_bar(const Bridge& f, const Bridge& b, double layer_height) {
     auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
+    // Ends within kForbiddenNear, or a stretch of b within kForbiddenBeside
+    // of f (along: its ends that near f's line, their projections overlapping f).
+    return std::abs(f.z - b.z) < 1.5 * layer_height &&
+           boxes_meet(b, f.x0, f.y0, f.x1, f.y1, std::max(kForbiddenNear, kForbiddenBeside)) &&
+           ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
+            (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0)) || along(f, b));
+}
+
+}  // namespace
+
+bool near_forbidden(const Forbidden& forbidden, const Bridge& b, double layer_height) {
     for (const Xyz& f : forbidden.places)
-        if (std::abs(f.z - b.z) < kPlaceLayers * layer_height + 1e-9 && passes_near(b, f.x, f.y, kPlaceNear)) return true;
+        if (near_place(f, b, layer_height)) return true;
     for (const Bridge& f : forbidden.bars)
-        if (std::abs(f.z - b.z) < 1.5 * layer_height &&
-            ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
-             (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0)) || along(f, b)))
-            return true;
+        if (near_bar(f, b, layer_height)) return true;
+    return false;
+}
+
+ForbiddenLookup::ForbiddenLookup(const Forbidden& forbidden, double layer_height)
+    : bars_(forbidden.bars), places_(forbidden.places), h_(layer_height) {
+    std::stable_sort(bars_.begin(), bars_.end(), [](const Bridge& a, const Bridge& b) { return a.z < b.z; });
+    std::stable_sort(places_.begin(), places_.end(), [](const Xyz& a, const Xyz& b) { return a.z < b.z; });
+}
+
+bool ForbiddenLookup::operator()(const Bridge& b) const {
+    // Only those within their window of b's height can match (near_place and
+    // near_bar test the same windows exactly): a bar search asks this of
+    // every candidate.
+    const double place_window = kPlaceLayers * h_ + 1e-9, bar_window = 1.5 * h_;
+    for (auto it = std::lower_bound(places_.begin(), places_.end(), b.z - place_window,
+                                    [](const Xyz& f, double z) { return f.z < z; });
+         it != places_.end() && it->z <= b.z + place_window; ++it)
+        if (near_place(*it, b, h_)) return true;
+    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), b.z - bar_window,
+                                    [](const Bridge& f, double z) { return f.z < z; });
+         it != bars_.end() && it->z <= b.z + bar_window; ++it)
+        if (near_bar(*it, b, h_)) return true;
     return false;
 }
 
@@ -430,8 +474,9 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // Bars that would be trapped in a hollow of the model are no bridges:
     // the hollows are mapped when the first bar is taken.
     std::optional<Cavities> cavities;
-    auto is_forbidden = [&](double z, double x0, double y0, double x1, double y1) {
-        return near_forbidden(forbidden, {x0, y0, x1, y1, z, {}, 0, 0}, s.layer_height);
+    const ForbiddenLookup near(forbidden, s.layer_height);
+    auto is_forbidden = [&near](double z, double x0, double y0, double x1, double y1) {
+        return near({x0, y0, x1, y1, z, {}, 0, 0});
     };
     if (!forbidden.empty()) m.bar_forbidden = is_forbidden;
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {

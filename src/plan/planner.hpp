@@ -51,6 +51,18 @@ inline constexpr double kForbiddenAngleDeg = 5.0;
 inline constexpr double kPlaceNear = 1.0;
 inline constexpr double kPlaceLayers = 3.0;
 bool near_forbidden(const Forbidden& forbidden, const Bridge& bar, double layer_height);
+// The same answer, with the forbidden sorted by height: asked of every
+// candidate bar, it looks only at those within their windows of its height.
+class ForbiddenLookup {
+public:
+    ForbiddenLookup(const Forbidden& forbidden, double layer_height);
+    bool operator()(const Bridge& bar) const;
+
+private:
+    std::vector<Bridge> bars_;
+    std::vector<Xyz> places_;
+    double h_ = 0;
+};
 
 // A plan's bridge search kept as it went, so a plan made again of the same
 // points without some more bars (the pipeline's rounds) resumes from the

@@ -576,6 +576,48 @@ TEST(PlannerForbidden, NoBarPassesNearAPlaceABarFailedBeside) {
         EXPECT_FALSE(plan::near_forbidden(failed, b, 0.2)) << b.x0 << ", " << b.y0 << " z " << b.z;
 }
 
+// The search asks ForbiddenLookup (the forbidden sorted by height, boxes
+// compared first) of every candidate: it answers as near_forbidden does.
+// Bars and places on a 0.1 mm grid of heights, queries near them (ends a
+// few mm off, some along their lines) at heights up to 1 mm away.
+TEST(PlannerForbidden, TheLookupAnswersAsTheListDoes) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> xy(0, 40), off(-1.5, 1.5), t(-0.3, 1.3);
+    std::uniform_int_distribution<int> layer(20, 60), dz(-10, 10);
+    const double h = 0.1;
+    plan::Forbidden forbidden;
+    for (int i = 0; i < 40; ++i) {
+        plan::Bridge b;
+        b.x0 = xy(rng), b.y0 = xy(rng), b.x1 = xy(rng), b.y1 = xy(rng), b.z = layer(rng) * h;
+        forbidden.bars.push_back(b);
+        forbidden.places.push_back({xy(rng), xy(rng), layer(rng) * h});
+    }
+    const plan::ForbiddenLookup lookup(forbidden, h);
+    int near = 0, queries = 0;
+    for (int i = 0; i < 20000; ++i) {
+        plan::Bridge q;
+        const plan::Bridge& f = forbidden.bars[static_cast<std::size_t>(i) % forbidden.bars.size()];
+        if (i % 3 == 0) {  // along f's line, a stretch of it, a little aside
+            const double a = t(rng), b = t(rng);
+            q.x0 = f.x0 + (f.x1 - f.x0) * a + off(rng) * 0.4, q.y0 = f.y0 + (f.y1 - f.y0) * a + off(rng) * 0.4;
+            q.x1 = f.x0 + (f.x1 - f.x0) * b + off(rng) * 0.4, q.y1 = f.y0 + (f.y1 - f.y0) * b + off(rng) * 0.4;
+        } else if (i % 3 == 1) {  // its ends moved
+            q.x0 = f.x0 + off(rng), q.y0 = f.y0 + off(rng), q.x1 = f.x1 + off(rng), q.y1 = f.y1 + off(rng);
+        } else {
+            q.x0 = xy(rng), q.y0 = xy(rng), q.x1 = xy(rng), q.y1 = xy(rng);
+        }
+        q.z = f.z + dz(rng) * h;
+        const bool expected = plan::near_forbidden(forbidden, q, h);
+        ASSERT_EQ(lookup(q), expected) << "(" << q.x0 << ", " << q.y0 << ") -> (" << q.x1 << ", " << q.y1 << ") z " << q.z;
+        near += expected;
+        ++queries;
+    }
+    // Both answers well represented.
+    EXPECT_GT(near, queries / 10);
+    EXPECT_LT(near, queries * 9 / 10);
+    EXPECT_FALSE(plan::ForbiddenLookup({}, h)(forbidden.bars[0]));
+}
+
 // The lowest bar whose connector meets METHOD's Standing rule as the
 // planner holds it (half of what the whole may give: 0.5 / (2 x 1.25) =
 // 0.2 mm/N). A 0.75 mm stick of 0.45 mm beads: rc = 0.525, E I = 3500 pi
