@@ -443,6 +443,9 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     bool bars_held = best.bars_held;
     if (replay.offers_replayed > 0)
         log.debug("plans made again resumed their bridge search: {} offers not made again", replay.offers_replayed);
+    if (answers->descents && answers->descents->hits > 0)
+        log.debug("pillars' walks down: {} of {} as kept from before", answers->descents->hits,
+                  answers->descents->hits + answers->descents->misses);
     if (log.should_log(spdlog::level::trace)) {
         for (std::size_t i = 0; i < points.points.size(); ++i) {
             const overhang::SupportPoint& p = points.points[i];

@@ -217,6 +217,7 @@ private:
 // four plans, 130k of them distinct). Looked up only, never iterated.
 class BarEndAnswers;  // plan/pillars.hpp
 class LeanInAnswers;  // plan/lean_in.hpp
+class DescentCache;   // plan/pillars.hpp
 struct ModelAnswers {
     BarTable<bool> bars;  // bar_clear
     BarTable<bool> ends;  // end_stands
@@ -225,6 +226,8 @@ struct ModelAnswers {
     std::shared_ptr<BarEndAnswers> bar_ends;
     // The lean-ins weak pillars are compared with (set by plan_scaffold).
     std::shared_ptr<LeanInAnswers> lean_ins;
+    // The pillars' walks down (set by plan_scaffold).
+    std::shared_ptr<DescentCache> descents;
 };
 
 // The set of active points with, for each point and sweep direction, the

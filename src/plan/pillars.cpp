@@ -400,8 +400,16 @@ bool rests_on_model(double x, double y, int top_layer, const layers::LayerStack&
 
 // Walks the column down from its top layer, stepping aside where the model
 // comes too close. Returns the centre per layer (top first), with the base.
+// Where a descent would have asked the trunks: the layer, the centre above
+// it, and how near a trunk's loop must come there to change the walk.
+struct TrunkCheck {
+    int layer;
+    float x, y, reach;
+};
+
 bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
-             std::vector<Step>& path, const Trunks* trunks, ModelBase* base = nullptr) {
+             std::vector<Step>& path, const Trunks* trunks, ModelBase* base = nullptr,
+             std::vector<TrunkCheck>* checks = nullptr, bool* trunk_used = nullptr) {
     double cx = proto.x1, cy = proto.y1, wander = 0;
     double height_above = 0;  // of the layer of path.back()
     int back_layer = -1;      // the layer of path.back()
@@ -411,6 +419,12 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
         double r = column_radius_at(proto, layer.z, s);
         double need = room_needed(proto, layer.z, r, s);
         bool first = path.empty();
+        // A trunk changes the walk only where a loop of it comes within the
+        // steer (leaning) or the shift limit (standing on it: loops_apart is
+        // at least the centres' distance).
+        if (checks && !first)
+            checks->push_back({l, static_cast<float>(cx), static_cast<float>(cy),
+                               static_cast<float>(loop_shift_limit(height_above, s))});
         if (trunks && !first && !trunks->at(l).empty()) {
             // Stand on a trunk whose loop here holds our loop above (its
             // centre line within the reach of the trunk's bead).
@@ -422,6 +436,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 // would not stand it: METHOD's Standing rule.)
                 if (loops_apart(o.x, o.y, o.rc, up.x, up.y, rc_up) <= hold &&
                     (!(target_stiffness(s) > 0) || o.hold_z >= proto.hold_z - 1e-6)) {
+                    if (trunk_used) *trunk_used = true;
                     proto.base = Base::Column;
                     proto.z0 = layer.z;
                     smooth_caps(path, proto, stack, top_layer, s);
@@ -440,6 +455,7 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
                 double k = std::min(step, near_d) / near_d;
                 double nx = cx + (near->x - cx) * k, ny = cy + (near->y - cy) * k;
                 if (obs.disc_clear(l, nx, ny, need)) {
+                    if (trunk_used) *trunk_used = true;
                     cx = nx;
                     cy = ny;
                     wander += std::min(step, near_d);
@@ -566,6 +582,89 @@ bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, cons
     proto.z0 = 0;
     smooth_caps(path, proto, stack, top_layer, s);
     return true;
+}
+
+}  // namespace
+
+struct DescentCache::Impl {
+    // Every field of the column walked, and its top layer, by their bits.
+    using Key = std::array<std::uint64_t, 20>;
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            std::uint64_t h = 0x9E3779B97F4A7C15ull;
+            for (std::uint64_t v : k) h = (h ^ v) * 0xBF58476D1CE4E5B9ull, h ^= h >> 31;
+            return static_cast<std::size_t>(h);
+        }
+    };
+    struct Walk {
+        bool ok = false;
+        Column proto;  // as the walk left it (its base and z0)
+        std::vector<Step> path;
+        ModelBase base;
+        std::vector<TrunkCheck> checks;
+    };
+    std::unordered_map<Key, Walk, Hash> walks;
+    std::size_t bytes = 0;
+    // Past this the walks found are not kept (a plan's pillars take a few MB).
+    static constexpr std::size_t kBudget = std::size_t{96} << 20;
+
+    static Key key(const Column& c, int top_layer) {
+        auto b = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+        return {b(c.x0), b(c.y0), b(c.z0), b(c.x1), b(c.y1), b(c.z1), b(c.radius),
+                static_cast<std::uint64_t>(c.base), static_cast<std::uint64_t>(c.top),
+                static_cast<std::uint64_t>(static_cast<std::int64_t>(c.point)), b(c.contact_z), b(c.neck),
+                b(c.foot_radius), b(c.raft_size), b(c.lean_from), b(c.taper), b(c.hold_z), b(c.give),
+                b(c.max_radius), static_cast<std::uint64_t>(static_cast<std::int64_t>(top_layer))};
+    }
+};
+
+DescentCache::DescentCache() : impl(std::make_unique<Impl>()) {}
+DescentCache::~DescentCache() = default;
+
+namespace {
+
+// Whether no loop of `trunks` comes near enough to any place the walk asked
+// them (with a hair to spare for the places kept as floats).
+bool trunks_leave_alone(const std::vector<TrunkCheck>& checks, const Trunks& trunks) {
+    for (const TrunkCheck& c : checks) {
+        const std::vector<Trunks::Loop>& loops = trunks.at(c.layer);
+        const double reach = std::max(trunks.steer(), static_cast<double>(c.reach)) + 1e-3;
+        for (const Trunks::Loop& o : loops)
+            if (std::hypot(o.x - c.x, o.y - c.y) < reach) return false;
+    }
+    return true;
+}
+
+// descend, answered from `cache` where a kept walk holds for these trunks
+// (none: the walk without trunks); a walk no trunk changed is kept.
+bool descend_kept(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs,
+                  const Settings& s, std::vector<Step>& path, const Trunks* trunks, ModelBase* base,
+                  DescentCache* cache) {
+    if (!cache) return descend(proto, top_layer, stack, obs, s, path, trunks, base);
+    DescentCache::Impl& c = *cache->impl;
+    const DescentCache::Impl::Key key = DescentCache::Impl::key(proto, top_layer);
+    if (auto it = c.walks.find(key); it != c.walks.end() && (!trunks || trunks_leave_alone(it->second.checks, *trunks))) {
+        ++cache->hits;
+        const DescentCache::Impl::Walk& w = it->second;
+        proto = w.proto;
+        path = w.path;
+        if (base) *base = w.base;
+        return w.ok;
+    }
+    ++cache->misses;
+    DescentCache::Impl::Walk w;
+    bool trunk_used = false;
+    ModelBase found;
+    const bool ok = descend(proto, top_layer, stack, obs, s, path, trunks, &found, &w.checks, &trunk_used);
+    if (base) *base = found;
+    if (trunk_used || c.bytes > DescentCache::Impl::kBudget) return ok;
+    w.ok = ok;
+    w.proto = proto;
+    w.path = path;
+    w.base = found;
+    c.bytes += sizeof(DescentCache::Impl::Walk) + w.path.size() * sizeof(Step) + w.checks.size() * sizeof(TrunkCheck);
+    c.walks.insert_or_assign(key, std::move(w));
+    return ok;
 }
 
 // The per-layer centres as columns, bottom first: a vertical column while
@@ -707,9 +806,10 @@ std::optional<std::vector<Column>> drop_pillar_shaped(double x, double y, int ov
                 // down: then the plain way down, without trunks.
                 const Column start = c;
                 ModelBase base;
-                if (!descend(c, top_layer, stack, obs, s, path, trunks, &base)) {
+                DescentCache* kept = trunks ? trunks->descents() : nullptr;
+                if (!descend_kept(c, top_layer, stack, obs, s, path, trunks, &base, kept)) {
                     c = start;
-                    if (!trunks || !descend(c, top_layer, stack, obs, s, path, nullptr, &base)) continue;
+                    if (!trunks || !descend_kept(c, top_layer, stack, obs, s, path, nullptr, &base, kept)) continue;
                 }
                 if (c.base == Base::Model && s.buildplate_only) return std::nullopt;
                 // Thin pillars only where they stay within the slenderness limit.

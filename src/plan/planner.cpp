@@ -395,8 +395,12 @@ bool boxes_meet(const Bridge& b, double x0, double y0, double x1, double y1, dou
            std::min(b.y0, b.y1) - m <= std::max(y0, y1) && std::min(y0, y1) <= std::max(b.y0, b.y1) + m;
 }
 
+// How far in height a forbidden place and bar reach.
+double place_window(double layer_height) { return kPlaceLayers * layer_height + 1e-9; }
+double bar_window(double layer_height) { return 1.5 * layer_height; }
+
 bool near_place(const Xyz& f, const Bridge& b, double layer_height) {
-    return std::abs(f.z - b.z) < kPlaceLayers * layer_height + 1e-9 && boxes_meet(b, f.x, f.y, f.x, f.y, kPlaceNear) &&
+    return std::abs(f.z - b.z) < place_window(layer_height) && boxes_meet(b, f.x, f.y, f.x, f.y, kPlaceNear) &&
            passes_near(b, f.x, f.y, kPlaceNear);
 }
 
@@ -404,7 +408,7 @@ bool near_bar(const Bridge& f, const Bridge& b, double layer_height) {
     auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
     // Ends within kForbiddenNear, or a stretch of b within kForbiddenBeside
     // of f (along: its ends that near f's line, their projections overlapping f).
-    return std::abs(f.z - b.z) < 1.5 * layer_height &&
+    return std::abs(f.z - b.z) < bar_window(layer_height) &&
            boxes_meet(b, f.x0, f.y0, f.x1, f.y1, std::max(kForbiddenNear, kForbiddenBeside)) &&
            ((near(f.x0, f.y0, b.x0, b.y0) && near(f.x1, f.y1, b.x1, b.y1)) ||
             (near(f.x0, f.y0, b.x1, b.y1) && near(f.x1, f.y1, b.x0, b.y0)) || along(f, b));
@@ -430,14 +434,14 @@ bool ForbiddenLookup::operator()(const Bridge& b) const {
     // Only those within their window of b's height can match (near_place and
     // near_bar test the same windows exactly): a bar search asks this of
     // every candidate.
-    const double place_window = kPlaceLayers * h_ + 1e-9, bar_window = 1.5 * h_;
-    for (auto it = std::lower_bound(places_.begin(), places_.end(), b.z - place_window,
+    const double pw = place_window(h_), bw = bar_window(h_);
+    for (auto it = std::lower_bound(places_.begin(), places_.end(), b.z - pw,
                                     [](const Xyz& f, double z) { return f.z < z; });
-         it != places_.end() && it->z <= b.z + place_window; ++it)
+         it != places_.end() && it->z <= b.z + pw; ++it)
         if (near_place(*it, b, h_)) return true;
-    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), b.z - bar_window,
+    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), b.z - bw,
                                     [](const Bridge& f, double z) { return f.z < z; });
-         it != bars_.end() && it->z <= b.z + bar_window; ++it)
+         it != bars_.end() && it->z <= b.z + bw; ++it)
         if (near_bar(*it, b, h_)) return true;
     return false;
 }
@@ -456,7 +460,9 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     if (!answers) answers = std::make_shared<ModelAnswers>();
     if (!answers->bar_ends) answers->bar_ends = std::make_shared<BarEndAnswers>();
     if (!answers->lean_ins) answers->lean_ins = std::make_shared<LeanInAnswers>();
+    if (!answers->descents) answers->descents = std::make_shared<DescentCache>();
     const std::shared_ptr<LeanInAnswers> lean_ins = answers->lean_ins;  // answers moves to the search below
+    const std::shared_ptr<DescentCache> descents = answers->descents;
     auto view_of = [&](const Obstacles& o) {
         ModelView v = model_view(o);
         v.end_stands = [&stack, &s, &by_z, op = &o, known = answers->bar_ends](double x, double y, double z) {
@@ -506,6 +512,7 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     // or, branching, on a column already planned (a connector or pillar).
     Trunks trunks(stack, kBranchSteer);
     trunks.add(out.columns, stack, s);
+    trunks.keep_descents(descents.get());
     for (const Active& a : rest) {
         int overhang_layer = a.point >= 0 ? points.points[a.point].layer : by_z.above(a.z);
         std::optional<std::vector<Column>> chain;

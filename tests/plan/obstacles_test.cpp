@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include "layers/layer_stack.hpp"
 #include "plan/braces.hpp"
@@ -214,6 +215,56 @@ TEST_F(Trunks, WithoutSteeringOnlyAPillarRightAboveStandsOnIt) {
     EXPECT_NEAR(above->front().z0, st.layers[49].z, 1e-6);
     EXPECT_EQ(above->front().x0, 50.2);
     EXPECT_EQ(above->front().x1, 50.2);
+}
+
+// The same columns, field by field.
+void expect_same_chain(const std::optional<std::vector<plan::Column>>& a,
+                       const std::optional<std::vector<plan::Column>>& b) {
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (!a) return;
+    ASSERT_EQ(a->size(), b->size());
+    for (std::size_t i = 0; i < a->size(); ++i) {
+        const plan::Column &p = (*a)[i], &q = (*b)[i];
+        EXPECT_EQ(std::tie(p.x0, p.y0, p.z0, p.x1, p.y1, p.z1, p.radius, p.taper, p.max_radius, p.foot_radius),
+                  std::tie(q.x0, q.y0, q.z0, q.x1, q.y1, q.z1, q.radius, q.taper, q.max_radius, q.foot_radius))
+            << "piece " << i;
+        EXPECT_EQ(p.base, q.base) << "piece " << i;
+    }
+}
+
+// Walks down kept (DescentCache) answer for the next trunks only where no
+// trunk comes within reach of them: a point 1.5 mm from the trunk branches
+// off it as without the cache (its walk kept from a plan without the trunk
+// is not taken), one 10 mm away takes its kept walk, the same column.
+TEST_F(Trunks, AWalkKeptHoldsOnlyWhereNoTrunkComesNear) {
+    ASSERT_TRUE(trunk);
+    plan::DescentCache cache;
+    plan::Trunks none(st, plan::kBranchSteer);
+    none.keep_descents(&cache);
+    const auto near_alone = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &none);
+    const auto far_alone = plan::drop_pillar(60, 50, 70, plan::Top::Contact, st, obs, s, &none);
+    EXPECT_EQ(cache.hits, 0);
+    const long long walked = cache.misses;
+    EXPECT_GT(walked, 0);
+    // Asked again with no trunks: every walk from the cache, the same columns.
+    expect_same_chain(plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &none), near_alone);
+    EXPECT_EQ(cache.misses, walked);
+    EXPECT_GT(cache.hits, 0);
+
+    plan::Trunks with_trunk = with_steering(plan::kBranchSteer);
+    const auto near_fresh = plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &with_trunk);
+    const auto far_fresh = plan::drop_pillar(60, 50, 70, plan::Top::Contact, st, obs, s, &with_trunk);
+    ASSERT_TRUE(near_fresh && near_alone);
+    EXPECT_EQ(near_fresh->front().base, plan::Base::Column);
+    EXPECT_EQ(near_alone->front().base, plan::Base::Bed);
+    with_trunk.keep_descents(&cache);
+    const long long misses = cache.misses;
+    expect_same_chain(plan::drop_pillar(51.5, 50, 70, plan::Top::Contact, st, obs, s, &with_trunk), near_fresh);
+    EXPECT_GT(cache.misses, misses);  // walked again: the trunk is within reach
+    const long long hits_near = cache.hits;
+    expect_same_chain(plan::drop_pillar(60, 50, 70, plan::Top::Contact, st, obs, s, &with_trunk), far_fresh);
+    expect_same_chain(far_fresh, far_alone);
+    EXPECT_GT(cache.hits, hits_near);  // 10 mm off: the walk kept
 }
 
 TEST(PlanPillars, PointsStackedUpASlopeShareOneColumn) {
