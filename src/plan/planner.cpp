@@ -364,24 +364,38 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const ModelView& m
 
 namespace {
 
+// hypot(dx, dy) < r, the squares compared where they settle it (the search
+// asks this of every candidate near a forbidden bar): the same answer.
+bool closer_than(double dx, double dy, double r) {
+    const double d2 = dx * dx + dy * dy, r2 = r * r;
+    if (d2 < r2 * (1 - 1e-9)) return true;
+    if (d2 > r2 * (1 + 1e-9)) return false;
+    return std::hypot(dx, dy) < r;
+}
+
 // Whether bar b runs along f's line: parallel within kForbiddenAngleDeg, its
 // ends within kForbiddenBeside of that line, over at least half the
-// shorter's length.
+// shorter's length. The cheapest test first (the four must all hold).
 bool along(const Bridge& f, const Bridge& b) {
-    const double fl = std::hypot(f.x1 - f.x0, f.y1 - f.y0), bl = std::hypot(b.x1 - b.x0, b.y1 - b.y0);
-    if (fl < 1e-9 || bl < 1e-9) return false;
+    const double fl = std::hypot(f.x1 - f.x0, f.y1 - f.y0);
+    if (fl < 1e-9) return false;
     const double ux = (f.x1 - f.x0) / fl, uy = (f.y1 - f.y0) / fl;
-    const double cos = std::abs(ux * (b.x1 - b.x0) + uy * (b.y1 - b.y0)) / bl;
-    if (cos < std::cos(kForbiddenAngleDeg * std::numbers::pi / 180)) return false;
     auto beside = [&](double x, double y) { return std::abs(-uy * (x - f.x0) + ux * (y - f.y0)); };
     if (beside(b.x0, b.y0) > kForbiddenBeside || beside(b.x1, b.y1) > kForbiddenBeside) return false;
+    const double bl = std::hypot(b.x1 - b.x0, b.y1 - b.y0);
+    if (bl < 1e-9) return false;
+    const double cos = std::abs(ux * (b.x1 - b.x0) + uy * (b.y1 - b.y0)) / bl;
+    if (cos < std::cos(kForbiddenAngleDeg * std::numbers::pi / 180)) return false;
     const double t0 = ux * (b.x0 - f.x0) + uy * (b.y0 - f.y0), t1 = ux * (b.x1 - f.x0) + uy * (b.y1 - f.y0);
     const double overlap = std::min(fl, std::max(t0, t1)) - std::max(0.0, std::min(t0, t1));
     return overlap >= 0.5 * std::min(fl, bl);
 }
 
+// layers::segment_distance(x, y, b) < r, by closer_than.
 bool passes_near(const Bridge& b, double x, double y, double r) {
-    return layers::segment_distance(x, y, b.x0, b.y0, b.x1, b.y1) < r;
+    const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((x - b.x0) * dx + (y - b.y0) * dy) / l2, 0.0, 1.0) : 0.0;
+    return closer_than(x - (b.x0 + dx * t), y - (b.y0 + dy * t), r);
 }
 
 }  // namespace
@@ -405,7 +419,7 @@ bool near_place(const Xyz& f, const Bridge& b, double layer_height) {
 }
 
 bool near_bar(const Bridge& f, const Bridge& b, double layer_height) {
-    auto near = [](double ax, double ay, double bx, double by) { return std::hypot(ax - bx, ay - by) < kForbiddenNear; };
+    auto near = [](double ax, double ay, double bx, double by) { return closer_than(ax - bx, ay - by, kForbiddenNear); };
     // Ends within kForbiddenNear, or a stretch of b within kForbiddenBeside
     // of f (along: its ends that near f's line, their projections overlapping f).
     return std::abs(f.z - b.z) < bar_window(layer_height) &&
