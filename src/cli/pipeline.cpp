@@ -261,12 +261,15 @@ struct GroupPlanned {
     // (not held as built, or on a column short of the Standing rule): where
     // this group is joined with another, the joined plan starts without them.
     plan::Forbidden learned;
+    // What its plans asked of the model (pure answers: any plan on the same
+    // model and settings may ask them again, as a joined group's does).
+    std::shared_ptr<plan::ModelAnswers> answers;
 };
 
 GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const plan::Obstacles& obstacles, const Settings& settings,
                         SharedCavities& cavities, spdlog::logger& log, Progress* progress, int threads = 1,
-                        const plan::Forbidden& start = {}) {
+                        const plan::Forbidden& start = {}, std::shared_ptr<plan::ModelAnswers> known = nullptr) {
     const auto hollows = [&]() -> const plan::Cavities& { return cavities.get(obstacles); };
     // The bridge search's other threads, each asking the model through
     // caches of its own, kept over the rounds as the first thread's are.
@@ -278,7 +281,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             helpers.push_back(own.back().get());
         }
     const Clock::time_point t0 = Clock::now();
-    const auto answers = std::make_shared<plan::ModelAnswers>();  // the model's answers, kept for the next round
+    // The model's answers, kept for the next round.
+    const auto answers = known ? std::move(known) : std::make_shared<plan::ModelAnswers>();
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
     plan::BraceAnswers brace_answers;  // the helper pillars dropped, asked again by the next round
     toolpath::BarCheckCache bar_cache;  // the bar lines judged, asked again by the next round
@@ -476,7 +480,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         log.debug("{} brace bars not held as built: left out", bad.size());
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     }
-    return {std::move(points), std::move(scaffold), std::move(paths), std::move(learned)};
+    return {std::move(points), std::move(scaffold), std::move(paths), std::move(learned), answers};
 }
 
 // A plate of exact copies (layers::Copies): the first copy's plan (its
@@ -660,6 +664,9 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     // What each group's plans were made again without; a joined group's
     // plan starts without what its parts' were.
     std::vector<plan::Forbidden> learned(groups.size());
+    // What each group's plans asked of the model; a joined group's plan
+    // starts with its first part's (the same model).
+    std::vector<std::shared_ptr<plan::ModelAnswers>> known(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -682,9 +689,10 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, nullptr, 1, learned[g]);
+                                               cavities, log, nullptr, 1, learned[g], known[g]);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
                 learned[g] = std::move(done.learned);
+                known[g] = std::move(done.answers);
                 if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
             },
             heavy >= 2 ? 0.0 : req.second_thread_after_s);
@@ -706,6 +714,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         std::vector<plan::GroupPlan> kept;
         std::vector<plan::PlanReach> kept_reach;
         std::vector<plan::Forbidden> kept_learned;
+        std::vector<std::shared_ptr<plan::ModelAnswers>> kept_known;
         std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
         for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -716,6 +725,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 kept.push_back(std::move(plans[g]));
                 kept_reach.push_back(std::move(reach[g]));
                 kept_learned.push_back(std::move(learned[g]));
+                kept_known.push_back(std::move(known[g]));
                 again.push_back(0);
             } else {
                 next[at[r]] = plan::joined(next[at[r]], groups[g]);
@@ -737,6 +747,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         reach = std::move(kept_reach);
         todo = std::move(again);
         learned = std::move(kept_learned);
+        known = std::move(kept_known);
         for (std::size_t g = 0; g < groups.size(); ++g)
             if (todo[g] && !learned[g].empty())
                 log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",

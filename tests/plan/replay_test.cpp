@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "plan/obstacles.hpp"
+#include "plan/pillars.hpp"
 #include "plan/planner.hpp"
 #include "support/stacks.hpp"
 
@@ -117,4 +118,39 @@ TEST(BridgeReplay, SeedsSearchedBeforeABarWasForbiddenAreSearchedAgain) {
         if (resumed.bridges.size() < 4) break;
     }
     EXPECT_GT(replay.offers_replayed, 0);
+}
+
+// The model's answers (ModelAnswers: bars, bar ends, lean-ins, the pillars'
+// walks down) are the model's alone: a plan of other points asking them as
+// another plan left them is the plan made with none kept (a joined group's
+// plan starts with its first part's). Points 2.5 mm apart at three heights,
+// so pillars branch off the columns beside them; the part's plan is made
+// of the right half. (Whether a kept walk holds for other trunks:
+// Trunks.AWalkKeptHoldsOnlyWhereNoTrunkComesNear.)
+TEST(BridgeReplay, AnswersKeptByAnotherPlanGiveTheSamePlan) {
+    const Settings s;
+    const layers::LayerStack st = test::empty_stack(16, 70);
+    const plan::Obstacles obs(st, s);
+    overhang::SupportPoints part, whole;
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 6; ++j) {
+            const int layer = 30 + 7 * ((i * 2 + j) % 3);
+            const overhang::SupportPoint p{20.0 + 2.5 * i + 0.7 * (j % 2), 20.0 + 2.5 * j, 0.2 * layer, layer};
+            whole.points.push_back(p);
+            if (i >= 5) part.points.push_back(p);
+        }
+    const auto answers = std::make_shared<plan::ModelAnswers>();
+    plan::plan_scaffold(part, st, obs, s, {}, answers);
+    ASSERT_TRUE(answers->descents);
+    const long long walked = answers->descents->misses;
+    EXPECT_GT(walked, 0);
+    const plan::Scaffold kept = plan::plan_scaffold(whole, st, obs, s, {}, answers);
+    const plan::Scaffold fresh = plan::plan_scaffold(whole, st, obs, s);
+    EXPECT_EQ(geometry(kept), geometry(fresh));
+    EXPECT_EQ(kept.dropped_points, fresh.dropped_points);
+    EXPECT_GT(answers->descents->hits, 0);
+    // Columns standing on others: the trunks took part.
+    int on_columns = 0;
+    for (const plan::Column& c : fresh.columns) on_columns += c.base == plan::Base::Column;
+    EXPECT_GT(on_columns, 0);
 }
