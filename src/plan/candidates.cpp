@@ -89,6 +89,15 @@ struct BridgeSearch::Scratch {
     std::vector<char> carried;  // carries(i, z) at the current height
     std::vector<signed char> stands;
     std::vector<double> heights, wl, wr, ws;
+    // The same counts and largest w for the lower heights a blocked span is
+    // tried at (j = 1 .. kLowerHeights - 1), made when first asked at a height.
+    struct Lower {
+        double z = 0;
+        bool ready = false;
+        std::vector<int> count;
+        std::vector<double> wl, wr;
+    };
+    std::vector<Lower> lower;
     const ModelView* model = nullptr;  // the model as this thread asks it
     // Bars' clearance by samples along their line (bar_clear): per line
     // (direction, offset) and layer, whether each sample's disc is clear
@@ -449,16 +458,6 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     std::vector<double>&wl = sc.wl, &wr = sc.wr;
     wl.resize(n);
     wr.resize(n);
-    // Carried count and l_max of span [a..b] at height z, scanned directly.
-    auto span_at = [&](int a, int b, double z, int& kk, double& wmax) {
-        kk = 0;
-        wmax = 0;
-        for (int i = a; i <= b; ++i)
-            if (carries(i, z)) {
-                ++kk;
-                wmax = std::max(wmax, pts[i].w);
-            }
-    };
     auto take = [&](int a, int b, double z, int kk, double wmax) {
         double len = pts[b].du - pts[a].du;
         best.x0 = (uq + pts[a].du) * c - vq * sn;
@@ -539,22 +538,36 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
             }
             if (!may_beat) continue;
         }
-        // Who is carried at this height, asked once per point, not per pass.
-        std::vector<char>& car = sc.carried;
-        car.resize(n);
-        for (int i = 0; i < n; ++i) car[i] = carries(i, z);
-        for (int i = 0; i < n; ++i) count[i + 1] = count[i] + car[i];
-        // wl[a]: largest w carried in [a..a_max]; wr[b]: in [b_min..b]; the
-        // two overlap only on points at du = 0, so together they cover [a..b].
-        double m = 0;
-        for (int i = a_max; i >= 0; --i) {
-            if (car[i]) m = std::max(m, pts[i].w);
-            wl[i] = m;
-        }
-        m = 0;
-        for (int i = b_min; i < n; ++i) {
-            if (car[i]) m = std::max(m, pts[i].w);
-            wr[i] = m;
+        // Who is carried at height zc, asked once per point, not per pass:
+        // cnt[i] carried before i; wl_[a]: largest w carried in [a..a_max];
+        // wr_[b]: in [b_min..b]. The two overlap only on points at du = 0,
+        // so together they cover [a..b].
+        auto carried_at = [&](double zc, std::vector<int>& cnt, std::vector<double>& wl_, std::vector<double>& wr_) {
+            std::vector<char>& car = sc.carried;
+            car.resize(n);
+            cnt.resize(n + 1);
+            wl_.resize(n);
+            wr_.resize(n);
+            cnt[0] = 0;
+            for (int i = 0; i < n; ++i) car[i] = carries(i, zc);
+            for (int i = 0; i < n; ++i) cnt[i + 1] = cnt[i] + car[i];
+            double m = 0;
+            for (int i = a_max; i >= 0; --i) {
+                if (car[i]) m = std::max(m, pts[i].w);
+                wl_[i] = m;
+            }
+            m = 0;
+            for (int i = b_min; i < n; ++i) {
+                if (car[i]) m = std::max(m, pts[i].w);
+                wr_[i] = m;
+            }
+        };
+        carried_at(z, count, wl, wr);
+        // The lower heights a blocked span is tried at, counted when first needed.
+        sc.lower.resize(kLowerHeights);
+        for (int j = 1; j < kLowerHeights; ++j) {
+            sc.lower[j].z = model_->snap_down(z - j * s_.bridge_height_step);
+            sc.lower[j].ready = false;
         }
         // With k carried, largest w at least W and length at least len, a
         // span scores at most k (2z - W) - 2z - len, largest at k = 3 or at
@@ -616,11 +629,15 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
                 if (blocked) blocked_from = std::min(blocked_from, pts[b].du);
                 // Blocked (by the model or a failed check): the same span a few steps lower.
                 for (int j = 1; j < kLowerHeights; ++j) {
-                    double z2 = model_->snap_down(z - j * s_.bridge_height_step);
+                    Scratch::Lower& lo = sc.lower[j];
+                    const double z2 = lo.z;
                     if (z2 <= kEps) break;
-                    int k2;
-                    double w2;
-                    span_at(a, b, z2, k2, w2);
+                    if (!lo.ready) {
+                        carried_at(z2, lo.count, lo.wl, lo.wr);
+                        lo.ready = true;
+                    }
+                    const int k2 = lo.count[b + 1] - lo.count[a];
+                    const double w2 = std::max(lo.wl[a], lo.wr[b]);
                     double g2 = bridge_gain(k2, z2, len);
                     if (g2 <= 0) continue;
                     if (has && bridge_score(g2, k2, w2 - z2) <= best.score) continue;

@@ -504,6 +504,40 @@ TEST(PlannerSearch, IncrementalSearchAgreesWithAFreshOneAtEveryStep) {
     EXPECT_GT(steps, 15);
 }
 
+// A span blocked at its height is tried a step lower (bridge_height_step),
+// counting the points a bar there carries: four points on y = 10, two at
+// z 20 and two at z 17. The best bar carries all four; with bars at its
+// height blocked, the one offered is the same span a step lower, still
+// carrying all four, scored for that height (l_max up to the z 20 points).
+// (The bars carry a point from 2 mm under it: heights 18 and 15, and at 18
+// only two points.)
+TEST(PlannerSearch, ABlockedSpanIsTriedAStepLowerWithWhatItCarriesThere) {
+    Settings s;
+    const plan::ModelView open = free_space();
+    plan::BridgeSearch unblocked(open, s);
+    const double xs[4] = {10, 14, 18, 22}, zs[4] = {20, 20, 17, 17};
+    for (int i = 0; i < 4; ++i) unblocked.add({xs[i], 10, zs[i], i});
+    const auto top = unblocked.best();
+    ASSERT_TRUE(top);
+    ASSERT_EQ(top->carried.size(), 4u);
+    const double z_top = top->z;
+    EXPECT_NEAR(z_top, 15, 1e-9);
+    plan::ModelView m = free_space();
+    // A bar at z fills the layers up to kBarThickness above it.
+    m.segment_clear = [z_top](double z, double, double, double, double, double) { return !(z > z_top && z <= z_top + 1); };
+    plan::BridgeSearch search(m, s);
+    for (int i = 0; i < 4; ++i) search.add({xs[i], 10, zs[i], i});
+    const auto lower = search.best();
+    ASSERT_TRUE(lower);
+    const double z2 = m.snap_down(z_top - s.bridge_height_step);
+    EXPECT_NEAR(lower->z, z2, 1e-9);
+    EXPECT_EQ(std::tie(lower->x0, lower->x1), std::tie(top->x0, top->x1));
+    EXPECT_EQ(lower->carried, top->carried);
+    const double len = top->x1 - top->x0;
+    EXPECT_DOUBLE_EQ(lower->gain, plan::bridge_gain(4, z2, len));
+    EXPECT_DOUBLE_EQ(lower->score, plan::bridge_score(plan::bridge_gain(4, z2, len), 4, 20 - z2));
+}
+
 TEST(PlannerSearch, APointNoConnectorReachesIsNoLongerCountedOnThatLine) {
     // Four points on the line y = 10, 4 mm apart: the best bar carries all
     // four. Once no connector reaches point 1 from it, no bar on that line at
