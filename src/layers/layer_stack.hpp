@@ -24,11 +24,20 @@ struct Segment {
     std::uint32_t move = 0;    // index into Program::moves
 };
 
-// Distance from (px, py) to the segment (x0, y0) - (x1, y1).
-inline double segment_distance(double px, double py, double x0, double y0, double x1, double y1) {
+// (px, py) less the point of segment (x0, y0)-(x1, y1) nearest it: its
+// length is segment_distance (a caller may compare it squared first).
+inline void segment_offset(double px, double py, double x0, double y0, double x1, double y1, double& ox, double& oy) {
     const double dx = x1 - x0, dy = y1 - y0, l2 = dx * dx + dy * dy;
     const double t = l2 > 0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / l2, 0.0, 1.0) : 0.0;
-    return std::hypot(px - (x0 + dx * t), py - (y0 + dy * t));
+    ox = px - (x0 + dx * t);
+    oy = py - (y0 + dy * t);
+}
+
+// Distance from (px, py) to the segment (x0, y0) - (x1, y1).
+inline double segment_distance(double px, double py, double x0, double y0, double x1, double y1) {
+    double ox, oy;
+    segment_offset(px, py, x0, y0, x1, y1, ox, oy);
+    return std::hypot(ox, oy);
 }
 
 // Distance from (px, py) to the segment's centre line (its coordinates'

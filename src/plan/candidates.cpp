@@ -454,10 +454,8 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     sd.takes.clear();
     int best_a = -1, best_b = -1;  // best's span: its carried list is built once, at the end
     std::vector<int>& count = sc.count;
-    count.assign(n + 1, 0);
-    std::vector<double>&wl = sc.wl, &wr = sc.wr;
-    wl.resize(n);
-    wr.resize(n);
+    std::vector<double>&wl = sc.wl, &wr = sc.wr;  // count, wl, wr: made per height (carried_at)
+    sc.lower.resize(kLowerHeights);
     auto take = [&](int a, int b, double z, int kk, double wmax) {
         double len = pts[b].du - pts[a].du;
         best.x0 = (uq + pts[a].du) * c - vq * sn;
@@ -564,7 +562,6 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         };
         carried_at(z, count, wl, wr);
         // The lower heights a blocked span is tried at, counted when first needed.
-        sc.lower.resize(kLowerHeights);
         for (int j = 1; j < kLowerHeights; ++j) {
             sc.lower[j].z = model_->snap_down(z - j * s_.bridge_height_step);
             sc.lower[j].ready = false;

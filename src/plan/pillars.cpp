@@ -398,8 +398,6 @@ bool rests_on_model(double x, double y, int top_layer, const layers::LayerStack&
     return loop_held(obs, top_layer, x, y, s.tip_radius, rest_reach(stack, top_layer, s));
 }
 
-// Walks the column down from its top layer, stepping aside where the model
-// comes too close. Returns the centre per layer (top first), with the base.
 // Where a descent would have asked the trunks: the layer, the centre above
 // it, and how near a trunk's loop must come there to change the walk.
 struct TrunkCheck {
@@ -407,6 +405,10 @@ struct TrunkCheck {
     float x, y, reach;
 };
 
+// Walks the column down from its top layer, stepping aside where the model
+// comes too close. Returns the centre per layer (top first), with the base.
+// `checks` (optional): where it asked the trunks; `trunk_used`: set where
+// a trunk changed the walk (it stood on one or leaned towards one).
 bool descend(Column& proto, int top_layer, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
              std::vector<Step>& path, const Trunks* trunks, ModelBase* base = nullptr,
              std::vector<TrunkCheck>* checks = nullptr, bool* trunk_used = nullptr) {

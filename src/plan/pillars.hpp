@@ -19,9 +19,6 @@
 
 namespace scaffold::plan {
 
-// The loops of the pillars planned so far, per layer: a new pillar whose
-// loop one of them holds stands on it instead of printing its loops across
-// the other's; within `steer` mm of one it leans towards it (a branch).
 // Descents (a column's walk down, stepping around the model) kept over the
 // plans made again on the same stack, obstacles and settings: one walked
 // where no trunk came within reach is the walk without trunks, and holds
@@ -38,6 +35,9 @@ public:
     long long hits = 0, misses = 0;
 };
 
+// The loops of the pillars planned so far, per layer: a new pillar whose
+// loop one of them holds stands on it instead of printing its loops across
+// the other's; within `steer` mm of one it leans towards it (a branch).
 class Trunks {
 public:
     struct Loop {

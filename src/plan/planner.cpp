@@ -393,14 +393,10 @@ bool along(const Bridge& f, const Bridge& b) {
 
 // layers::segment_distance(x, y, b) < r, by closer_than.
 bool passes_near(const Bridge& b, double x, double y, double r) {
-    const double dx = b.x1 - b.x0, dy = b.y1 - b.y0, l2 = dx * dx + dy * dy;
-    const double t = l2 > 0 ? std::clamp(((x - b.x0) * dx + (y - b.y0) * dy) / l2, 0.0, 1.0) : 0.0;
-    return closer_than(x - (b.x0 + dx * t), y - (b.y0 + dy * t), r);
+    double ox, oy;
+    layers::segment_offset(x, y, b.x0, b.y0, b.x1, b.y1, ox, oy);
+    return closer_than(ox, oy, r);
 }
-
-}  // namespace
-
-namespace {
 
 // Whether the box around b's ends, grown by m, meets the box around
 // (x0, y0), (x1, y1): no point of b comes within m of that segment otherwise.
