@@ -264,12 +264,18 @@ struct GroupPlanned {
     // What its plans asked of the model (pure answers: any plan on the same
     // model and settings may ask them again, as a joined group's does).
     std::shared_ptr<plan::ModelAnswers> answers;
+    // Its last plan before braces and props (bars, pillars, the points that
+    // cover what tips leave): where this group is joined with another, the
+    // joined plan's first round is the parts' side by side. None where the
+    // rounds ran out and an earlier plan was kept.
+    std::optional<plan::GroupPlan> unbraced;
 };
 
 GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                         const layers::LayerStack& stack, const plan::Obstacles& obstacles, const Settings& settings,
                         SharedCavities& cavities, spdlog::logger& log, Progress* progress, int threads = 1,
-                        const plan::Forbidden& start = {}, std::shared_ptr<plan::ModelAnswers> known = nullptr) {
+                        const plan::Forbidden& start = {}, std::shared_ptr<plan::ModelAnswers> known = nullptr,
+                        const plan::GroupPlan* first = nullptr) {
     const auto hollows = [&]() -> const plan::Cavities& { return cavities.get(obstacles); };
     // The bridge search's other threads, each asking the model through
     // caches of its own, kept over the rounds as the first thread's are.
@@ -294,13 +300,18 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         bool bars_held = false;
         plan::Forbidden forbidden;          // what its last round was made without
         std::vector<std::size_t> braced;    // its bars whose end stands on a braced column
+        std::optional<plan::GroupPlan> unbraced;  // its last round's plan before braces and props
+        bool given = false;                 // that plan is `first`, not searched
     };
-    auto attempt = [&](plan::Forbidden forbidden) -> Attempt {
+    // `given`: the first round's plan before braces (no bridge search).
+    auto attempt = [&](plan::Forbidden forbidden, const plan::GroupPlan* given) -> Attempt {
         overhang::SupportPoints points;
         plan::Scaffold scaffold;
         toolpath::SupportPaths paths;
         bool bars_held = false;  // the last plan's bars checked and all held
         std::vector<std::size_t> braced_bars;
+        std::optional<plan::GroupPlan> unbraced;
+        bool last_given = false;  // the last round's plan is `given`
         // Should the rounds run out, each plan still keeping a few such bars: the
         // plan with the fewest not held that carry points (brace bars are left
         // out below), then with the fewest on columns short of the rule (those
@@ -316,17 +327,28 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             else if (progress)
                 progress->say("planning again without {} bars (plan {} of at most {})", forbidden.bars.size(), round + 1, kBarRounds + 1);
             const Clock::time_point r0 = Clock::now();
-            points = detected;
-            scaffold = settings.method == Method::Pillars ? plan::plan_pillars(points, stack, obstacles, settings)
-                                                          : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers,
-                                                                                hollows, &replay, helpers);
+            const bool from_given = given && round == 0;
+            last_given = from_given;
+            if (from_given) {
+                points = given->points;
+                scaffold = given->scaffold;
+            } else {
+                points = detected;
+                scaffold = settings.method == Method::Pillars
+                               ? plan::plan_pillars(points, stack, obstacles, settings)
+                               : plan::plan_scaffold(points, stack, obstacles, settings, forbidden, answers, hollows, &replay,
+                                                     helpers);
+            }
             // A tip set off its point (a slot, a wall) holds less of the sheet than
             // the point stood for (METHOD's rule (c)): what it leaves gets points and
-            // pillars of its own, a few rounds at most.
+            // pillars of its own, a few rounds at most (a given plan's are in it).
             const Clock::time_point r1 = Clock::now();
-            if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, obstacles, settings,
-                                                   settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer, kCoverRounds))
-                log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
+            if (!from_given)
+                if (std::size_t n = plan::cover_unheld(scaffold, points, overhangs, stack, obstacles, settings,
+                                                       settings.method == Method::Pillars ? 0.0 : plan::kBranchSteer,
+                                                       kCoverRounds))
+                    log.debug("{} more points where a tip set off its point left part of the sheet unheld", n);
+            unbraced = plan::GroupPlan{points, scaffold};
             // METHOD's Standing rule: columns too weak for it (no room to widen)
             // tied to two neighbours in triangles.
             const Clock::time_point r2 = Clock::now();
@@ -385,7 +407,11 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                 if (std::find(bad.begin(), bad.end(), i) == bad.end()) bad.push_back(i);
             std::sort(bad.begin(), bad.end());
             bars_held = unheld.empty();
-            if (bad.empty()) break;
+            if (bad.empty()) {
+                if (from_given) log.debug("the parts' plans side by side hold: not planned again");
+                break;
+            }
+            if (from_given) log.debug("the parts' plans side by side do not hold: the joined group planned whole");
             const std::pair<std::size_t, std::size_t> carrying{
                 static_cast<std::size_t>(
                     std::count_if(unheld.begin(), unheld.end(), [&](std::size_t i) { return !scaffold.bridges[i].brace; })),
@@ -397,6 +423,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                     scaffold = std::move(kept.scaffold);
                     paths = std::move(kept.paths);
                     bars_held = false;  // its brace bars not checked here
+                    unbraced.reset();
                 }
                 break;
             }
@@ -420,20 +447,23 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             log.debug("{} bars not held as built or short of the rule: planning again without them ({:.0f} ms so far)",
                       bad.size(), ms_between(t0, Clock::now()));
         }
-        return {std::move(points), std::move(scaffold), std::move(paths), bars_held, std::move(forbidden), std::move(braced_bars)};
+        return {std::move(points), std::move(scaffold), std::move(paths), bars_held, std::move(forbidden),
+                std::move(braced_bars), std::move(unbraced), last_given};
     };
     // A bar whose end stands on a column too weak for the Standing rule
     // costs its braces too (bars, helper columns), which the bridge search
     // does not count: the plan made again without such bars, kept where it
     // holds every bar and costs less (75-file sweep: 3.1 % less support, a
     // figure 37 %, bunny 4.8 %; a second attempt found more, a third none).
-    Attempt best = attempt(start);
+    // (A joined group whose parts' plans hold side by side is not searched
+    // again: its parts' plans were each tried so.)
+    Attempt best = attempt(start, first);
     plan::Forbidden learned = best.forbidden;
-    for (int k = 0; k < kUnbracedAttempts && best.bars_held && !best.braced.empty(); ++k) {
+    for (int k = 0; k < kUnbracedAttempts && best.bars_held && !best.braced.empty() && !best.given; ++k) {
         plan::Forbidden without = best.forbidden;
         for (std::size_t i : best.braced) without.bars.push_back(best.scaffold.bridges[i]);
         if (progress) progress->say("planning again without {} bars on braced columns", best.braced.size());
-        Attempt other = attempt(std::move(without));
+        Attempt other = attempt(std::move(without), nullptr);
         const double was = toolpath::paths_volume(best.paths, stack), now = toolpath::paths_volume(other.paths, stack);
         const bool better = other.bars_held && now < was;
         log.debug("planned without the {} bars on braced columns: support {:.1f} -> {:.1f} mm3{}", best.braced.size(), was,
@@ -480,7 +510,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         log.debug("{} brace bars not held as built: left out", bad.size());
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     }
-    return {std::move(points), std::move(scaffold), std::move(paths), std::move(learned), answers};
+    return {std::move(points), std::move(scaffold), std::move(paths), std::move(learned), answers, std::move(best.unbraced)};
 }
 
 // A plate of exact copies (layers::Copies): the first copy's plan (its
@@ -667,6 +697,10 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     // What each group's plans asked of the model; a joined group's plan
     // starts with its first part's (the same model).
     std::vector<std::shared_ptr<plan::ModelAnswers>> known(groups.size());
+    // Each group's last plan before braces; a joined group's first round
+    // is its parts' side by side (where each part has one).
+    std::vector<std::optional<plan::GroupPlan>> unbraced(groups.size());
+    std::vector<std::optional<plan::GroupPlan>> side_by_side(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -689,10 +723,12 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, nullptr, 1, learned[g], known[g]);
+                                               cavities, log, nullptr, 1, learned[g], known[g],
+                                               side_by_side[g] ? &*side_by_side[g] : nullptr);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
                 learned[g] = std::move(done.learned);
                 known[g] = std::move(done.answers);
+                unbraced[g] = std::move(done.unbraced);
                 if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
             },
             heavy >= 2 ? 0.0 : req.second_thread_after_s);
@@ -715,12 +751,17 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         std::vector<plan::PlanReach> kept_reach;
         std::vector<plan::Forbidden> kept_learned;
         std::vector<std::shared_ptr<plan::ModelAnswers>> kept_known;
+        std::vector<std::optional<plan::GroupPlan>> kept_unbraced;
+        std::vector<std::vector<std::size_t>> parts;  // each new group's old groups, in order
         std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
+        const std::vector<plan::PointGroup> old = groups;
         for (std::size_t g = 0; g < groups.size(); ++g) {
             const std::size_t r = root(g);
             if (r == g) {
                 at[g] = next.size();
+                parts.push_back({g});
+                kept_unbraced.push_back(std::move(unbraced[g]));
                 next.push_back(std::move(groups[g]));
                 kept.push_back(std::move(plans[g]));
                 kept_reach.push_back(std::move(reach[g]));
@@ -729,6 +770,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 again.push_back(0);
             } else {
                 next[at[r]] = plan::joined(next[at[r]], groups[g]);
+                parts[at[r]].push_back(g);
                 again[at[r]] = 1;
                 // Bars its parts' plans found not held, found again by the
                 // joined plan's rounds, each a plan of the whole (four Cura
@@ -742,12 +784,31 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         log.debug("plans of {} groups came close: planned again as {}", groups.size() - next.size() +
                   static_cast<std::size_t>(std::count(again.begin(), again.end(), 1)),
                   std::count(again.begin(), again.end(), 1));
+        // A joined group's first round: its parts' plans before braces side
+        // by side, braced and checked as one (where each part has one).
+        side_by_side.assign(next.size(), std::nullopt);
+        for (std::size_t k = 0; k < next.size(); ++k) {
+            if (!again[k]) continue;
+            bool all = kept_unbraced[k].has_value();  // the first part's, moved there
+            for (std::size_t g : parts[k]) all = all && (g == parts[k].front() || unbraced[g]);
+            if (all) {
+                std::vector<plan::PointGroup> each_group;
+                std::vector<plan::GroupPlan> each;
+                for (std::size_t g : parts[k]) {
+                    each_group.push_back(old[g]);
+                    each.push_back(g == parts[k].front() ? std::move(*kept_unbraced[k]) : std::move(*unbraced[g]));
+                }
+                side_by_side[k] = plan::side_by_side(detected, next[k], each_group, std::move(each));
+            }
+            kept_unbraced[k].reset();
+        }
         groups = std::move(next);
         plans = std::move(kept);
         reach = std::move(kept_reach);
         todo = std::move(again);
         learned = std::move(kept_learned);
         known = std::move(kept_known);
+        unbraced = std::move(kept_unbraced);
         for (std::size_t g = 0; g < groups.size(); ++g)
             if (todo[g] && !learned[g].empty())
                 log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",

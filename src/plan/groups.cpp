@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <stdexcept>
 #include <thread>
 
 #include "plan/braces.hpp"
@@ -282,6 +283,21 @@ Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<Poi
                                       plan.scaffold.unheld_bridge_ends.end());
     }
     std::sort(out.dropped_points.begin(), out.dropped_points.end());
+    return out;
+}
+
+GroupPlan side_by_side(const overhang::SupportPoints& input, const PointGroup& whole,
+                       const std::vector<PointGroup>& parts, std::vector<GroupPlan> plans) {
+    // Each part's points as positions in `whole` (whose index is sorted).
+    std::vector<PointGroup> local(parts.size());
+    for (std::size_t k = 0; k < parts.size(); ++k)
+        for (int i : parts[k].index) {
+            const auto at = std::lower_bound(whole.index.begin(), whole.index.end(), i);
+            if (at == whole.index.end() || *at != i) throw std::logic_error("side_by_side: a part's point not in the whole");
+            local[k].index.push_back(static_cast<int>(at - whole.index.begin()));
+        }
+    GroupPlan out;
+    out.scaffold = merge_plans(group_points(input, whole), local, plans, out.points);
     return out;
 }
 

@@ -114,6 +114,13 @@ struct GroupPlan {
 Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<PointGroup>& groups,
                      std::vector<GroupPlan>& plans, overhang::SupportPoints& points);
 
+// The plans of `parts` (groups whose points together are `whole`'s) as
+// one plan of `whole`: its points (group_points of `whole`), then each
+// part's added points, in part order; columns and bridges in part order,
+// indices renumbered to those points.
+GroupPlan side_by_side(const overhang::SupportPoints& input, const PointGroup& whole,
+                       const std::vector<PointGroup>& parts, std::vector<GroupPlan> plans);
+
 // The plan moved by (dx, dy): a copy's plan from the first copy's.
 GroupPlan moved(const GroupPlan& plan, double dx, double dy);
 

@@ -154,6 +154,47 @@ TEST(PointGroups, JoinedKeepsPointsAndCellsInOrder) {
     EXPECT_EQ(j.cells[3].first, 7);
 }
 
+TEST(GroupPlans, SideBySideRenumbersEachPartsPointsToTheJoinedGroups) {
+    // Points 0..5 (x = index); group a holds 0, 3, 4, group b 1, 5: joined,
+    // 0 1 3 4 5. a's plan added one point (its local 3), b's one (local 2).
+    overhang::SupportPoints all;
+    for (int i = 0; i < 6; ++i) all.points.push_back({static_cast<double>(i), 0, 1, 5});
+    const plan::PointGroup a{{0, 3, 4}, {}}, b{{1, 5}, {}};
+    const plan::PointGroup whole = plan::joined(a, b);
+    auto plan_of = [&](const plan::PointGroup& g, double added_x) {
+        plan::GroupPlan p;
+        p.points = plan::group_points(all, g);
+        p.points.points.push_back({added_x, 1, 1, 5});
+        const int n = static_cast<int>(g.index.size());
+        for (int i = 0; i <= n; ++i) {  // a column under each point, the added one's last
+            plan::Column c;
+            c.x0 = c.x1 = p.points.points[static_cast<std::size_t>(i)].x;
+            c.point = i;
+            p.scaffold.columns.push_back(c);
+        }
+        plan::Bridge bar;
+        bar.points = {0, n};  // the group's first point and its added one
+        p.scaffold.bridges.push_back(bar);
+        p.scaffold.dropped_points = {n - 1};
+        return p;
+    };
+    const plan::GroupPlan both = plan::side_by_side(all, whole, {a, b}, {plan_of(a, 10), plan_of(b, 20)});
+    // The joined group's points (0 1 3 4 5), then a's added, then b's.
+    std::vector<double> xs;
+    for (const overhang::SupportPoint& p : both.points.points) xs.push_back(p.x);
+    EXPECT_EQ(xs, (std::vector<double>{0, 1, 3, 4, 5, 10, 20}));
+    // Every column still stands under the point it holds.
+    ASSERT_EQ(both.scaffold.columns.size(), 7u);
+    for (const plan::Column& c : both.scaffold.columns)
+        EXPECT_EQ(both.points.points[static_cast<std::size_t>(c.point)].x, c.x0);
+    ASSERT_EQ(both.scaffold.bridges.size(), 2u);
+    EXPECT_EQ(both.scaffold.bridges[0].points, (std::vector<int>{0, 5}));  // a: point 0 and its added (x 10)
+    EXPECT_EQ(both.scaffold.bridges[1].points, (std::vector<int>{1, 6}));  // b: point 1 and its added (x 20)
+    EXPECT_EQ(both.scaffold.dropped_points, (std::vector<int>{3, 4}));      // a's 4 (position 3), b's 5 (position 4)
+    // A part's point the whole does not hold is a caller's error.
+    EXPECT_THROW(plan::side_by_side(all, a, {a, b}, {plan_of(a, 10), plan_of(b, 20)}), std::logic_error);
+}
+
 TEST(PlansApart, TwoBeadsBeyondEachEdge) {
     Settings s;  // support width 0.45, pillar radius 1
     auto column = [](double x, double y, double z0, double z1) {
