@@ -724,6 +724,8 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     std::vector<std::optional<plan::GroupPlan>> unbraced(groups.size());
     std::vector<std::optional<plan::GroupPlan>> side_by_side(groups.size());
     std::vector<std::pair<std::size_t, std::size_t>> left(groups.size());  // GroupPlanned::left
+    // Each group's paths: a plate whose groups all joined into one keeps its plan's.
+    std::vector<toolpath::SupportPaths> made(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -749,6 +751,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                                                cavities, log, req.bar_rounds, nullptr, 1, learned[g], known[g],
                                                side_by_side[g] ? &*side_by_side[g] : nullptr);
                 plans[g] = {std::move(done.points), std::move(done.scaffold)};
+                made[g] = std::move(done.paths);
                 learned[g] = std::move(done.learned);
                 known[g] = std::move(done.answers);
                 unbraced[g] = std::move(done.unbraced);
@@ -777,6 +780,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         std::vector<std::shared_ptr<plan::ModelAnswers>> kept_known;
         std::vector<std::optional<plan::GroupPlan>> kept_unbraced;
         std::vector<std::pair<std::size_t, std::size_t>> kept_left;
+        std::vector<toolpath::SupportPaths> kept_made;
         std::vector<std::vector<std::size_t>> parts;  // each new group's old groups, in order
         std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
@@ -788,6 +792,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 parts.push_back({g});
                 kept_unbraced.push_back(std::move(unbraced[g]));
                 kept_left.push_back(left[g]);
+                kept_made.push_back(std::move(made[g]));
                 next.push_back(std::move(groups[g]));
                 kept.push_back(std::move(plans[g]));
                 kept_reach.push_back(std::move(reach[g]));
@@ -836,6 +841,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
         known = std::move(kept_known);
         unbraced = std::move(kept_unbraced);
         left = std::move(kept_left);
+        made = std::move(kept_made);
         for (std::size_t g = 0; g < groups.size(); ++g)
             if (todo[g] && !learned[g].empty())
                 log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",
@@ -845,7 +851,10 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     for (std::size_t g = 0; g < groups.size(); ++g) warn_left(log, left[g], plans[g].points.points.size(), req.bar_rounds, settings);
     GroupPlanned all;
     all.scaffold = plan::merge_plans(detected, groups, plans, all.points);
-    all.paths = toolpath::make_paths(all.scaffold, stack, settings, obstacles.get());
+    // One group left (all joined): its plan's paths are those of the merged
+    // plan (the same columns and bars in the same order, only its points
+    // numbered as the plate's), made and checked in its last round.
+    all.paths = groups.size() == 1 ? std::move(made[0]) : toolpath::make_paths(all.scaffold, stack, settings, obstacles.get());
     return all;
 }
 
