@@ -421,7 +421,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                 short_of_rule.size()};
             if (carrying < kept.bad) kept = {carrying, points, scaffold, paths};
             if (round == rounds) {
-                left = std::min(kept.bad, carrying);
+                left = kept.bad;  // the plan kept below, or the last with as many
                 if (kept.bad < carrying) {
                     points = std::move(kept.points);
                     scaffold = std::move(kept.scaffold);
@@ -711,21 +711,13 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     // for each thread (the same answers) over the one set of model
     // rasters, the first thread's the one already built.
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
-    std::vector<plan::GroupPlan> plans(groups.size());
+    // Each group's plan as plan_group left it. A joined group's plan starts
+    // without the bars its parts' plans were made again without, with its
+    // first part's model answers (the same model) and, where each part has
+    // one, its parts' plans before braces side by side as its first round.
+    std::vector<GroupPlanned> planned(groups.size());
     std::vector<plan::PlanReach> reach(groups.size());  // each plan's, for plans_apart
-    // What each group's plans were made again without; a joined group's
-    // plan starts without what its parts' were.
-    std::vector<plan::Forbidden> learned(groups.size());
-    // What each group's plans asked of the model; a joined group's plan
-    // starts with its first part's (the same model).
-    std::vector<std::shared_ptr<plan::ModelAnswers>> known(groups.size());
-    // Each group's last plan before braces; a joined group's first round
-    // is its parts' side by side (where each part has one).
-    std::vector<std::optional<plan::GroupPlan>> unbraced(groups.size());
     std::vector<std::optional<plan::GroupPlan>> side_by_side(groups.size());
-    std::vector<std::pair<std::size_t, std::size_t>> left(groups.size());  // GroupPlanned::left
-    // Each group's paths: a plate whose groups all joined into one keeps its plan's.
-    std::vector<toolpath::SupportPaths> made(groups.size());
     std::vector<char> todo(groups.size(), 1);
     for (;;) {
         std::vector<std::size_t> list;
@@ -748,15 +740,10 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 }
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
-                                               cavities, log, req.bar_rounds, nullptr, 1, learned[g], known[g],
-                                               side_by_side[g] ? &*side_by_side[g] : nullptr);
-                plans[g] = {std::move(done.points), std::move(done.scaffold)};
-                made[g] = std::move(done.paths);
-                learned[g] = std::move(done.learned);
-                known[g] = std::move(done.answers);
-                unbraced[g] = std::move(done.unbraced);
-                left[g] = done.left;
-                if (!object.empty()) reach[g] = plan::plan_reach(plans[g].scaffold, settings);
+                                               cavities, log, req.bar_rounds, nullptr, 1, planned[g].learned,
+                                               planned[g].answers, side_by_side[g] ? &*side_by_side[g] : nullptr);
+                planned[g] = std::move(done);
+                if (!object.empty()) reach[g] = plan::plan_reach(planned[g].scaffold, settings);
             },
             heavy >= 2 ? 0.0 : req.second_thread_after_s);
         if (object.empty()) break;
@@ -773,88 +760,80 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 any = true;
             }
         if (!any) break;
+        // Still ordered by their lowest index: a joined group keeps its root's place.
         std::vector<plan::PointGroup> next;
-        std::vector<plan::GroupPlan> kept;
-        std::vector<plan::PlanReach> kept_reach;
-        std::vector<plan::Forbidden> kept_learned;
-        std::vector<std::shared_ptr<plan::ModelAnswers>> kept_known;
-        std::vector<std::optional<plan::GroupPlan>> kept_unbraced;
-        std::vector<std::pair<std::size_t, std::size_t>> kept_left;
-        std::vector<toolpath::SupportPaths> kept_made;
         std::vector<std::vector<std::size_t>> parts;  // each new group's old groups, in order
-        std::vector<char> again;
         std::vector<std::size_t> at(groups.size());
-        const std::vector<plan::PointGroup> old = groups;
         for (std::size_t g = 0; g < groups.size(); ++g) {
             const std::size_t r = root(g);
             if (r == g) {
                 at[g] = next.size();
                 parts.push_back({g});
-                kept_unbraced.push_back(std::move(unbraced[g]));
-                kept_left.push_back(left[g]);
-                kept_made.push_back(std::move(made[g]));
-                next.push_back(std::move(groups[g]));
-                kept.push_back(std::move(plans[g]));
-                kept_reach.push_back(std::move(reach[g]));
-                kept_learned.push_back(std::move(learned[g]));
-                kept_known.push_back(std::move(known[g]));
-                again.push_back(0);
+                next.push_back(groups[g]);
             } else {
                 next[at[r]] = plan::joined(next[at[r]], groups[g]);
                 parts[at[r]].push_back(g);
-                again[at[r]] = 1;
-                // Bars its parts' plans found not held, found again by the
-                // joined plan's rounds, each a plan of the whole (four Cura
-                // bunnies: 4 bars, then 1, then 1, as in the parts' plans).
-                plan::Forbidden& into_learned = kept_learned[at[r]];
-                into_learned.bars.insert(into_learned.bars.end(), learned[g].bars.begin(), learned[g].bars.end());
-                into_learned.places.insert(into_learned.places.end(), learned[g].places.begin(), learned[g].places.end());
             }
         }
-        // Still ordered by their lowest index: a joined group keeps its root's place.
-        log.debug("plans of {} groups came close: planned again as {}", groups.size() - next.size() +
-                  static_cast<std::size_t>(std::count(again.begin(), again.end(), 1)),
-                  std::count(again.begin(), again.end(), 1));
-        // A joined group's first round: its parts' plans before braces side
-        // by side, braced and checked as one (where each part has one).
+        std::vector<GroupPlanned> kept;
+        std::vector<plan::PlanReach> kept_reach;
+        std::vector<char> again;
         side_by_side.assign(next.size(), std::nullopt);
         for (std::size_t k = 0; k < next.size(); ++k) {
-            if (!again[k]) continue;
-            bool all = kept_unbraced[k].has_value();  // the first part's, moved there
-            for (std::size_t g : parts[k]) all = all && (g == parts[k].front() || unbraced[g]);
-            if (all) {
+            const std::vector<std::size_t>& p = parts[k];
+            again.push_back(p.size() > 1);
+            // Its first round: its parts' plans before braces side by side,
+            // braced and checked as one (where each part has one).
+            if (again[k] && std::all_of(p.begin(), p.end(), [&](std::size_t g) { return planned[g].unbraced.has_value(); })) {
                 std::vector<plan::PointGroup> each_group;
                 std::vector<plan::GroupPlan> each;
-                for (std::size_t g : parts[k]) {
-                    each_group.push_back(old[g]);
-                    each.push_back(g == parts[k].front() ? std::move(*kept_unbraced[k]) : std::move(*unbraced[g]));
+                for (std::size_t g : p) {
+                    each_group.push_back(groups[g]);
+                    each.push_back(std::move(*planned[g].unbraced));
                 }
                 side_by_side[k] = plan::side_by_side(detected, next[k], each_group, std::move(each));
             }
-            kept_unbraced[k].reset();
+            // Bars its parts' plans found not held, found again by the
+            // joined plan's rounds, each a plan of the whole (four Cura
+            // bunnies: 4 bars, then 1, then 1, as in the parts' plans).
+            plan::Forbidden& into_learned = planned[p.front()].learned;
+            for (std::size_t i = 1; i < p.size(); ++i) {
+                const plan::Forbidden& l = planned[p[i]].learned;
+                into_learned.bars.insert(into_learned.bars.end(), l.bars.begin(), l.bars.end());
+                into_learned.places.insert(into_learned.places.end(), l.places.begin(), l.places.end());
+            }
+            kept.push_back(std::move(planned[p.front()]));
+            kept_reach.push_back(std::move(reach[p.front()]));
         }
+        log.debug("plans of {} groups came close: planned again as {}", groups.size() - next.size() +
+                  static_cast<std::size_t>(std::count(again.begin(), again.end(), 1)),
+                  std::count(again.begin(), again.end(), 1));
         groups = std::move(next);
-        plans = std::move(kept);
+        planned = std::move(kept);
         reach = std::move(kept_reach);
         todo = std::move(again);
-        learned = std::move(kept_learned);
-        known = std::move(kept_known);
-        unbraced = std::move(kept_unbraced);
-        left = std::move(kept_left);
-        made = std::move(kept_made);
         for (std::size_t g = 0; g < groups.size(); ++g)
-            if (todo[g] && !learned[g].empty())
+            if (todo[g] && !planned[g].learned.empty())
                 log.debug("a joined group starts without the {} bars ({} places) its parts' plans found not held",
-                          learned[g].bars.size(), learned[g].places.size());
+                          planned[g].learned.bars.size(), planned[g].learned.places.size());
     }
     own.clear();
-    for (std::size_t g = 0; g < groups.size(); ++g) warn_left(log, left[g], plans[g].points.points.size(), req.bar_rounds, settings);
+    std::vector<plan::GroupPlan> plans;
+    for (GroupPlanned& p : planned) {
+        warn_left(log, p.left, p.points.points.size(), req.bar_rounds, settings);
+        plans.push_back({std::move(p.points), std::move(p.scaffold)});
+    }
     GroupPlanned all;
     all.scaffold = plan::merge_plans(detected, groups, plans, all.points);
     // One group left (all joined): its plan's paths are those of the merged
     // plan (the same columns and bars in the same order, only its points
     // numbered as the plate's), made and checked in its last round.
-    all.paths = groups.size() == 1 ? std::move(made[0]) : toolpath::make_paths(all.scaffold, stack, settings, obstacles.get());
+    if (groups.size() == 1) {
+        all.paths = std::move(planned.front().paths);
+        return all;
+    }
+    planned.clear();  // the groups' own paths and model answers, not needed now
+    all.paths = toolpath::make_paths(all.scaffold, stack, settings, obstacles.get());
     return all;
 }
 
