@@ -260,6 +260,11 @@ struct GroupPlanned {
     // What its plans asked of the model (pure answers: any plan on the same
     // model and settings may ask them again, as a joined group's does).
     std::shared_ptr<plan::ModelAnswers> answers;
+    // The helper pillars its braces dropped and the bar lines its checks
+    // judged (pure as well): a joined group's first round braces and checks
+    // its parts' plans again, side by side.
+    plan::BraceAnswers brace_answers;
+    toolpath::BarCheckCache bar_cache;
     // Its last plan before braces and props (bars, pillars, the points that
     // cover what tips leave): where this group is joined with another, the
     // joined plan's first round is the parts' side by side. None where the
@@ -274,7 +279,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                         const layers::LayerStack& stack, const plan::Obstacles& obstacles, const Settings& settings,
                         SharedCavities& cavities, spdlog::logger& log, int rounds, Progress* progress, int threads = 1,
                         const plan::Forbidden& start = {}, std::shared_ptr<plan::ModelAnswers> known = nullptr,
-                        const plan::GroupPlan* first = nullptr) {
+                        const plan::GroupPlan* first = nullptr, plan::BraceAnswers brace_answers = {},
+                        toolpath::BarCheckCache bar_cache = {}) {
     const auto hollows = [&]() -> const plan::Cavities& { return cavities.get(obstacles); };
     // The bridge search's other threads, each asking the model through
     // caches of its own, kept over the rounds as the first thread's are.
@@ -289,8 +295,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // The model's answers, kept for the next round.
     const auto answers = known ? std::move(known) : std::make_shared<plan::ModelAnswers>();
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
-    plan::BraceAnswers brace_answers;  // the helper pillars dropped, asked again by the next round
-    toolpath::BarCheckCache bar_cache;  // the bar lines judged, asked again by the next round
+    // brace_answers: the helper pillars dropped, bar_cache: the bar lines
+    // judged; both asked again by the next round.
     // A plan made in rounds, each without the bars the last could not hold.
     struct Attempt {
         overhang::SupportPoints points;
@@ -514,8 +520,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         log.debug("{} brace bars not held as built: left out", bad.size());
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     }
-    return {std::move(points),         std::move(scaffold), std::move(paths), std::move(learned), answers,
-            std::move(best.unbraced), best.left};
+    return {std::move(points),         std::move(scaffold),      std::move(paths), std::move(learned), answers,
+            std::move(brace_answers), std::move(bar_cache), std::move(best.unbraced), best.left};
 }
 
 // The rounds ran out with bars the plan could not do without: said, not
@@ -741,7 +747,8 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
                 GroupPlanned done = plan_group(plan::group_points(detected, groups[g]),
                                                plan::group_overhangs(overhangs, groups[g]), stack, *obs, settings,
                                                cavities, log, req.bar_rounds, nullptr, 1, planned[g].learned,
-                                               planned[g].answers, side_by_side[g] ? &*side_by_side[g] : nullptr);
+                                               planned[g].answers, side_by_side[g] ? &*side_by_side[g] : nullptr,
+                                               std::move(planned[g].brace_answers), std::move(planned[g].bar_cache));
                 planned[g] = std::move(done);
                 if (!object.empty()) reach[g] = plan::plan_reach(planned[g].scaffold, settings);
             },
@@ -796,11 +803,16 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
             // Bars its parts' plans found not held, found again by the
             // joined plan's rounds, each a plan of the whole (four Cura
             // bunnies: 4 bars, then 1, then 1, as in the parts' plans).
-            plan::Forbidden& into_learned = planned[p.front()].learned;
+            // And what its parts' braces and checks found, asked again
+            // where the parts' plans stand side by side.
+            GroupPlanned& whole = planned[p.front()];
             for (std::size_t i = 1; i < p.size(); ++i) {
-                const plan::Forbidden& l = planned[p[i]].learned;
-                into_learned.bars.insert(into_learned.bars.end(), l.bars.begin(), l.bars.end());
-                into_learned.places.insert(into_learned.places.end(), l.places.begin(), l.places.end());
+                GroupPlanned& part = planned[p[i]];
+                whole.learned.bars.insert(whole.learned.bars.end(), part.learned.bars.begin(), part.learned.bars.end());
+                whole.learned.places.insert(whole.learned.places.end(), part.learned.places.begin(),
+                                           part.learned.places.end());
+                whole.brace_answers.helpers.merge(part.brace_answers.helpers);
+                whole.bar_cache.answers.merge(part.bar_cache.answers);
             }
             kept.push_back(std::move(planned[p.front()]));
             kept_reach.push_back(std::move(reach[p.front()]));
