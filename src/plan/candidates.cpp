@@ -94,6 +94,8 @@ struct BridgeSearch::Scratch {
     struct Lower {
         double z = 0;
         bool ready = false;
+        bool rejected = false;   // the line may hold a rejected bar at z
+        bool forbidden = false;  // or a forbidden one
         std::vector<int> count;
         std::vector<double> wl, wr;
     };
@@ -159,12 +161,29 @@ long microns(double v) {
     return static_cast<long>(m >= 0 ? m + 0.5 : m - 0.5);
 }
 
+// rejected_lines_: 2^16 bits; a line's offset bucketed this finely (mm),
+// its neighbours asked too: the same bar (the same key, its ends to the
+// micron) lies on lines a micron or two apart at most.
+constexpr std::size_t kRejectLineBits = std::size_t{1} << 16;
+constexpr double kRejectLineTol = 0.01;
+
+std::size_t reject_line_bit(int direction, long bucket, long z_microns) {
+    std::uint64_t h = static_cast<std::uint64_t>(direction) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<std::uint64_t>(bucket) + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2);
+    h ^= static_cast<std::uint64_t>(z_microns) + 0x85EBCA77C2B2AE63ull + (h << 6) + (h >> 2);
+    h ^= h >> 29;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 32;
+    return static_cast<std::size_t>(h & (kRejectLineBits - 1));
+}
+
 }  // namespace
 
 BridgeSearch::BridgeSearch(const BridgeSearch& o, const ModelView& model, std::vector<const ModelView*> helpers)
     : model_(&model), helpers_(std::move(helpers)), s_(o.s_), reach_(o.reach_), points_(o.points_), low_(o.low_),
       alive_(o.alive_), seeds_(o.seeds_),
-      dirty_(o.dirty_), ranked_(o.ranked_), rejected_(o.rejected_), answers_(o.answers_), misses_(o.misses_),
+      dirty_(o.dirty_), ranked_(o.ranked_), rejected_(o.rejected_), rejected_lines_(o.rejected_lines_),
+      answers_(o.answers_), misses_(o.misses_),
       evaluations_(o.evaluations_), index_(std::make_shared<Index>(*o.index_)), threads_(o.threads_) {
     // Views for as many threads as the original had, or none.
     if (helpers_.size() + 1 != static_cast<std::size_t>(threads_)) helpers_.clear();
@@ -373,6 +392,12 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     const Active& q = points_[id];
     const double uq = q.x * c + q.y * sn, vq = -q.x * sn + q.y * c;
     const double hx = L * std::abs(c) + O * std::abs(sn), hy = L * std::abs(sn) + O * std::abs(c);
+    // Whether a span of this seed at height z may be forbidden (every span
+    // lies in the window's box).
+    auto forbidden_at = [&](double z) {
+        return model_->bar_forbidden && (!model_->forbidden_near || model_->forbidden_near(z, q.x - hx - 1e-6, q.y - hy - 1e-6,
+                                                                                            q.x + hx + 1e-6, q.y + hy + 1e-6));
+    };
     const double lean_per_mm = max_lean_per_layer(s_.layer_height, s_) / s_.layer_height;
 
     using Near = Scratch::Near;
@@ -481,17 +506,19 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
     // many spans, and the shared answers are behind a lock and a hash.
     std::vector<signed char>& stands = sc.stands;
     double stands_z = -1;
-    auto usable = [&](int a, int b, double z, bool& blocked) {
+    // `rejected`: whether this line may hold a rejected bar at z,
+    // `forbidden`: a forbidden one.
+    auto usable = [&](int a, int b, double z, bool rejected, bool forbidden, bool& blocked) {
         double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
         double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
         blocked = false;
         // The bar before the ends when the bar is tested here at all: a
         // blocked bar spares the pillar searches under its ends.
-        if (!rejected_.empty() && rejected_.contains(key_of(x0, y0, x1, y1, z))) return false;
+        if (rejected && rejected_.contains(key_of(x0, y0, x1, y1, z))) return false;
         // Turned down as offered, one at a time, each such bar cost the seeds
         // offering it a search again (bunny: about 2000 searches of one seed
         // over five plans); left out here, the same bar is the best allowed.
-        if (model_->bar_forbidden && model_->bar_forbidden(z, x0, y0, x1, y1)) return false;
+        if (forbidden && model_->bar_forbidden(z, x0, y0, x1, y1)) return false;
         if (eager && !bar_clear(*sc.model, sc, x0, y0, x1, y1, z)) {
             blocked = true;
             return false;
@@ -561,6 +588,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
             }
         };
         carried_at(z, count, wl, wr);
+        const bool rejected_here = line_may_hold_rejected(k, vq, z), forbidden_here = forbidden_at(z);
         // The lower heights a blocked span is tried at, counted when first needed.
         for (int j = 1; j < kLowerHeights; ++j) {
             sc.lower[j].z = model_->snap_down(z - j * s_.bridge_height_step);
@@ -579,11 +607,11 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
         // (A bar the search leaves out as forbidden counts as rejected here:
         // offered, it would have been, and the longer span taken instead.)
         auto rejected_span = [&](int a, int b) {
-            if (rejected_.empty() && !model_->bar_forbidden) return false;
+            if (!rejected_here && !forbidden_here) return false;
             double x0 = (uq + pts[a].du) * c - vq * sn, y0 = (uq + pts[a].du) * sn + vq * c;
             double x1 = (uq + pts[b].du) * c - vq * sn, y1 = (uq + pts[b].du) * sn + vq * c;
-            return (!rejected_.empty() && rejected_.contains(key_of(x0, y0, x1, y1, z))) ||
-                   (model_->bar_forbidden && model_->bar_forbidden(z, x0, y0, x1, y1));
+            return (rejected_here && rejected_.contains(key_of(x0, y0, x1, y1, z))) ||
+                   (forbidden_here && model_->bar_forbidden(z, x0, y0, x1, y1));
         };
         // A bar over a blocked one is blocked too: at this height, with the
         // left ends taken outwards, every bar reaching right to
@@ -619,7 +647,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
                     if (pts[b_in].du - pts[a].du >= s_.bridge_min_length - kEps && !rejected_span(a, b_in)) continue;
                 }
                 bool blocked = eager && pts[b].du >= blocked_from;
-                if (!blocked && usable(a, b, z, blocked)) {
+                if (!blocked && usable(a, b, z, rejected_here, forbidden_here, blocked)) {
                     take(a, b, z, kk, wmax);
                     continue;
                 }
@@ -631,6 +659,8 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
                     if (z2 <= kEps) break;
                     if (!lo.ready) {
                         carried_at(z2, lo.count, lo.wl, lo.wr);
+                        lo.rejected = line_may_hold_rejected(k, vq, z2);
+                        lo.forbidden = forbidden_at(z2);
                         lo.ready = true;
                     }
                     const int k2 = lo.count[b + 1] - lo.count[a];
@@ -639,7 +669,7 @@ void BridgeSearch::evaluate(int seed, Scratch& sc) {
                     if (g2 <= 0) continue;
                     if (has && bridge_score(g2, k2, w2 - z2) <= best.score) continue;
                     bool blocked2 = eager && pts[b].du >= blocked_lower[j];
-                    if (!blocked2 && usable(a, b, z2, blocked2)) {
+                    if (!blocked2 && usable(a, b, z2, lo.rejected, lo.forbidden, blocked2)) {
                         take(a, b, z2, k2, w2);
                         break;
                     }
@@ -720,7 +750,7 @@ std::optional<Candidate> BridgeSearch::best() {
             ok = bar_clear(*model_, *scratch_[0], c.x0, c.y0, c.x1, c.y1, c.z);
             if (ok) sd.bar_checked = true;
             else {
-                rejected_.insert(key, 1);
+                mark_rejected(c.x0, c.y0, c.x1, c.y1, c.z);
                 ++sd.blocked;
             }
         }
@@ -739,8 +769,32 @@ std::optional<Candidate> BridgeSearch::best() {
     }
 }
 
+void BridgeSearch::mark_rejected(double x0, double y0, double x1, double y1, double z) {
+    rejected_.insert(key_of(x0, y0, x1, y1, z), 1);
+    // The sweep direction the bar lies along, and its offset across it, as
+    // evaluate() has them for the seeds whose line this is.
+    const int D = s_.sweep_directions;
+    double th = std::atan2(y1 - y0, x1 - x0);
+    if (th < 0) th += std::numbers::pi;
+    const int k = static_cast<int>(std::lround(th * D / std::numbers::pi)) % D;
+    const double a = k * std::numbers::pi / D, v = -x0 * std::sin(a) + y0 * std::cos(a);
+    if (rejected_lines_.empty()) rejected_lines_.assign(kRejectLineBits / 64, 0);
+    const std::size_t bit = reject_line_bit(k, static_cast<long>(std::floor(v / kRejectLineTol)), microns(z));
+    rejected_lines_[bit / 64] |= std::uint64_t{1} << (bit % 64);
+}
+
+bool BridgeSearch::line_may_hold_rejected(int direction, double v, double z) const {
+    if (rejected_lines_.empty()) return false;
+    const long b = static_cast<long>(std::floor(v / kRejectLineTol)), zm = microns(z);
+    for (long d = -1; d <= 1; ++d) {
+        const std::size_t bit = reject_line_bit(direction, b + d, zm);
+        if ((rejected_lines_[bit / 64] >> (bit % 64)) & 1u) return true;
+    }
+    return false;
+}
+
 void BridgeSearch::reject(const Candidate& c) {
-    rejected_.insert(key_of(c.x0, c.y0, c.x1, c.y1, c.z), 1);
+    mark_rejected(c.x0, c.y0, c.x1, c.y1, c.z);
     if (c.seed >= 0 && !seeds_[c.seed].dirty) {
         seeds_[c.seed].dirty = true;
         dirty_.push_back(c.seed);

@@ -67,6 +67,10 @@ struct ModelView {
     // earlier plan could not hold): the search leaves such bars out itself
     // instead of offering them one at a time. Empty: none.
     std::function<bool(double z, double x0, double y0, double x1, double y1)> bar_forbidden;
+    // Whether bar_forbidden may hold for some bar at height z within the box
+    // (false: for none; asked once per height of a seed, not per span).
+    // Empty: as though true.
+    std::function<bool(double z, double x_lo, double y_lo, double x_hi, double y_hi)> forbidden_near;
 
     // Largest layer top <= z (z itself without layers); < 0 when none.
     double snap_down(double z) const;
@@ -347,6 +351,14 @@ private:
     std::set<std::pair<double, int>> ranked_;  // (-score, seed): best first, ties by seed
     // Looked up only, never iterated: hashing keeps the plan deterministic.
     BarTable<char> rejected_;
+    // The lines (direction, offset to kRejectLineTol) and heights of the
+    // rejected bars, hashed to a bit each: a seed asks the table about its
+    // spans only at a height where its line may hold one (most spans were
+    // looked up for nothing: a fifth of a plate's time). A bit set by another
+    // line only costs the lookups.
+    std::vector<std::uint64_t> rejected_lines_;
+    void mark_rejected(double x0, double y0, double x1, double y1, double z);
+    bool line_may_hold_rejected(int direction, double v, double z) const;
     std::shared_ptr<ModelAnswers> answers_;
     struct Miss {
         int direction;

@@ -456,6 +456,26 @@ bool ForbiddenLookup::operator()(const Bridge& b) const {
     return false;
 }
 
+bool ForbiddenLookup::any_near(double z, double x_lo, double y_lo, double x_hi, double y_hi) const {
+    // Each test above needs the bar's box and the forbidden one's (grown by
+    // the margin) to meet, and the bar lies within this box.
+    auto meets = [&](double fx0, double fy0, double fx1, double fy1, double m) {
+        return x_lo - m <= std::max(fx0, fx1) && std::min(fx0, fx1) <= x_hi + m && y_lo - m <= std::max(fy0, fy1) &&
+               std::min(fy0, fy1) <= y_hi + m;
+    };
+    const double pw = place_window(h_), bw = bar_window(h_);
+    for (auto it = std::lower_bound(places_.begin(), places_.end(), z - pw,
+                                    [](const Xyz& f, double zf) { return f.z < zf; });
+         it != places_.end() && it->z <= z + pw; ++it)
+        if (std::abs(it->z - z) < pw && meets(it->x, it->y, it->x, it->y, kPlaceNear)) return true;
+    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), z - bw,
+                                    [](const Bridge& f, double zf) { return f.z < zf; });
+         it != bars_.end() && it->z <= z + bw; ++it)
+        if (std::abs(it->z - z) < bw && meets(it->x0, it->y0, it->x1, it->y1, std::max(kForbiddenNear, kForbiddenBeside)))
+            return true;
+    return false;
+}
+
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,
                        const Settings& s, const Forbidden& forbidden, std::shared_ptr<ModelAnswers> answers,
                        const std::function<const Cavities&()>& shared_cavities, BridgeReplay* replay,
@@ -494,7 +514,12 @@ Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::Laye
     auto is_forbidden = [&near](double z, double x0, double y0, double x1, double y1) {
         return near({x0, y0, x1, y1, z, {}, 0, 0});
     };
-    if (!forbidden.empty()) m.bar_forbidden = is_forbidden;
+    if (!forbidden.empty()) {
+        m.bar_forbidden = is_forbidden;
+        m.forbidden_near = [&near](double z, double x_lo, double y_lo, double x_hi, double y_hi) {
+            return near.any_near(z, x_lo, y_lo, x_hi, y_hi);
+        };
+    }
     m.bar_trapped = [&](double z, double x0, double y0, double x1, double y1) {
         if (is_forbidden(z, x0, y0, x1, y1)) return true;
         if (shared_cavities) return shared_cavities().bar_trapped(x0, y0, x1, y1, z);

@@ -57,6 +57,9 @@ class ForbiddenLookup {
 public:
     ForbiddenLookup(const Forbidden& forbidden, double layer_height);
     bool operator()(const Bridge& bar) const;
+    // False when no bar at height z lying within the box is near a forbidden
+    // bar or place (operator() false for all of them); true may be either.
+    bool any_near(double z, double x_lo, double y_lo, double x_hi, double y_hi) const;
 
 private:
     std::vector<Bridge> bars_;

@@ -4,7 +4,9 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <random>
+#include <set>
 #include <tuple>
 
 #include "layers/layer_stack.hpp"
@@ -564,6 +566,39 @@ TEST(PlannerSearch, APointNoConnectorReachesIsNoLongerCountedOnThatLine) {
     EXPECT_GT(offered, 0);  // the lower bars were still offered
 }
 
+// A bar turned down is not offered again by any seed on its line: the
+// search asks its table of rejected bars only at heights where the line
+// (direction, offset) may hold one. Six points on a diagonal, 3 mm apart
+// (each seed's offset across the line computed from its own point, so they
+// differ in the last bits), and six on a horizontal line: every bar offered
+// is rejected, and none comes back. (A search that misses a rejected bar
+// on its line offers it again and again: best() never returns, and the
+// test fails by its timeout.)
+TEST(PlannerSearch, ARejectedBarIsNotOfferedAgainFromAnyPointOnItsLine) {
+    Settings s;
+    const plan::ModelView m = free_space();
+    plan::BridgeSearch search(m, s);
+    for (int i = 0; i < 6; ++i) search.add({10.0 + 3 * std::numbers::sqrt2 / 2 * i, 50.0 + 3 * std::numbers::sqrt2 / 2 * i, 20, i});
+    for (int i = 0; i < 6; ++i) search.add({30.0 + 3 * i, 10.0, 18, 6 + i});
+    std::set<std::array<long, 5>> offered;
+    auto um = [](double v) { return std::lround(v * 1000); };
+    int diagonal = 0;
+    while (auto c = search.best()) {
+        std::array<long, 5> key{um(c->x0), um(c->y0), um(c->x1), um(c->y1), um(c->z)};
+        if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) {
+            std::swap(key[0], key[2]);
+            std::swap(key[1], key[3]);
+        }
+        ASSERT_TRUE(offered.insert(key).second) << "offered again: (" << c->x0 << ", " << c->y0 << ") -> (" << c->x1
+                                                << ", " << c->y1 << ") z " << c->z;
+        diagonal += std::abs((c->y1 - c->y0) - (c->x1 - c->x0)) < 1e-6 && c->y0 > 40;
+        search.reject(*c);
+        ASSERT_LT(offered.size(), 2000u);
+    }
+    EXPECT_GT(diagonal, 10);  // many bars along the diagonal, from its several seeds
+    EXPECT_GT(offered.size(), 20u);
+}
+
 // A bar that failed as built is not taken again, nor one next to it (ends
 // within 1 mm), nor one along its line (ends within 0.5 mm of it, within
 // 5 degrees, over half the shorter's length): the bull's belly bar came
@@ -650,6 +685,59 @@ TEST(PlannerForbidden, TheLookupAnswersAsTheListDoes) {
     EXPECT_GT(near, queries / 10);
     EXPECT_LT(near, queries * 9 / 10);
     EXPECT_FALSE(plan::ForbiddenLookup({}, h)(forbidden.bars[0]));
+}
+
+// The search asks any_near once per seed and height before asking the
+// lookup about each span there: it must never say "none" where some bar in
+// the box is forbidden. The bull's belly bar (6.6 mm, 0.2 mm layers: its
+// window is 1.5 layers, its box grown by 1 mm) is near a box reaching to
+// within 1 mm of it at 6.6 to 6.8 mm, not one 1.1 mm off, nor 2 layers up.
+TEST(PlannerForbidden, NoneNearOnlyWhereNoBarInTheBoxIsForbidden) {
+    plan::Bridge belly;
+    belly.x0 = 114.05, belly.y0 = 108.65, belly.x1 = 131.55, belly.y1 = 108.65, belly.z = 6.6;
+    const plan::ForbiddenLookup one(plan::Forbidden{{belly}, {}}, 0.2);
+    EXPECT_TRUE(one.any_near(6.6, 100, 100, 120, 108.0));  // its box reaches 107.65
+    EXPECT_TRUE(one.any_near(6.8, 132.5, 100, 140, 120));  // 0.95 mm past its end, a layer up
+    EXPECT_FALSE(one.any_near(6.6, 100, 100, 120, 107.55));  // 1.1 mm short of it
+    EXPECT_FALSE(one.any_near(7.0, 100, 100, 140, 120));     // two layers up
+    EXPECT_FALSE(one.any_near(6.6, 0, 0, 100, 100));
+    const plan::ForbiddenLookup place(plan::Forbidden{{}, {{14.55, 14.35, 6.4}}}, 0.2);
+    EXPECT_TRUE(place.any_near(7.0, 15.5, 10, 20, 20));    // 0.95 mm off, three layers up
+    EXPECT_FALSE(place.any_near(7.2, 15.5, 10, 20, 20));   // four layers up
+    EXPECT_FALSE(place.any_near(6.4, 15.65, 10, 20, 20));  // 1.1 mm off
+
+    // Random forbidden bars and places, random boxes; bars in each box at
+    // heights near theirs: where the lookup forbids one, any_near says so.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> xy(0, 60), size(1, 30), u(0, 1);
+    std::uniform_int_distribution<int> layer(20, 60), dz(-6, 6);
+    const double h = 0.1;
+    plan::Forbidden forbidden;
+    for (int i = 0; i < 30; ++i) {
+        plan::Bridge b;
+        b.x0 = xy(rng), b.y0 = xy(rng), b.x1 = b.x0 + size(rng) - 15, b.y1 = b.y0 + size(rng) - 15, b.z = layer(rng) * h;
+        forbidden.bars.push_back(b);
+        forbidden.places.push_back({xy(rng), xy(rng), layer(rng) * h});
+    }
+    const plan::ForbiddenLookup lookup(forbidden, h);
+    int boxes_none = 0, forbidden_in_box = 0;
+    for (int i = 0; i < 3000; ++i) {
+        const double x_lo = xy(rng), y_lo = xy(rng), x_hi = x_lo + size(rng), y_hi = y_lo + size(rng);
+        const double z = forbidden.bars[static_cast<std::size_t>(i) % forbidden.bars.size()].z + dz(rng) * h;
+        const bool maybe = lookup.any_near(z, x_lo, y_lo, x_hi, y_hi);
+        boxes_none += !maybe;
+        for (int j = 0; j < 40; ++j) {
+            plan::Bridge q;
+            q.x0 = x_lo + (x_hi - x_lo) * u(rng), q.y0 = y_lo + (y_hi - y_lo) * u(rng);
+            q.x1 = x_lo + (x_hi - x_lo) * u(rng), q.y1 = y_lo + (y_hi - y_lo) * u(rng), q.z = z;
+            if (!lookup(q)) continue;
+            ++forbidden_in_box;
+            ASSERT_TRUE(maybe) << "box (" << x_lo << ", " << y_lo << ") - (" << x_hi << ", " << y_hi << ") z " << z;
+        }
+    }
+    // Both kinds of box well represented: the filter saves lookups and is tried.
+    EXPECT_GT(boxes_none, 300);
+    EXPECT_GT(forbidden_in_box, 300);
 }
 
 // The lowest bar whose connector meets METHOD's Standing rule as the
