@@ -443,8 +443,22 @@ int Obstacles::fast_disc(int layer, double x, double y, double r) const {
     // A taper asks a new radius every layer, from a set that recurs: the
     // radii seen lately are kept by their bits before the map is asked.
     if (!last_fast_ || last_r_ != r) {
-        RecentFast& slot = recent_fast_[(std::bit_cast<std::uint64_t>(r) * 0x9E3779B97F4A7C15ull) >> 58];
-        if (!slot.fast || slot.r != r) slot = {r, &fast_[r]};
+        const std::uint64_t h = std::bit_cast<std::uint64_t>(r) * 0x9E3779B97F4A7C15ull;
+        RecentFast& slot = recent_fast_[h >> 58];
+        if (!slot.fast || slot.r != r) {
+            auto it = fast_.find(r);
+            if (it == fast_.end()) {
+                if (untracked_.empty()) untracked_.assign(std::size_t{1} << 16, 0);
+                std::uint16_t& n = untracked_[h >> 48];
+                if (n < kTrackAfter) {
+                    ++n;
+                    return -1;  // no lookup would be built for it yet either
+                }
+                it = fast_.emplace(r, Fast{}).first;
+                it->second.asked = kTrackAfter;
+            }
+            slot = {r, &it->second};
+        }
         last_fast_ = slot.fast;
         last_r_ = r;
     }

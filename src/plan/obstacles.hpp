@@ -200,6 +200,13 @@ private:
     };
     mutable std::array<RecentFast, 64> recent_fast_{};  // by the radius' bits, hashed
     mutable std::size_t fast_bytes_ = 0;
+    // Queries per radius before it has an entry in fast_, counted by its
+    // bits' hash (colliding radii share a counter): a lean-in or a taper asks
+    // thousands of radii a few times each, and an entry for each (a map node
+    // and a bit per layer) was a tenth of a plan's time (the space shuttle).
+    // A radius gets its entry once its counter reaches kTrackAfter.
+    static constexpr std::uint16_t kTrackAfter = 256;
+    mutable std::vector<std::uint16_t> untracked_;
     mutable std::vector<DiscLookup*> columns_;  // the Columns lookups of fast_, by radius
     // Layers lo..hi on which a disc of radius up to r at (x, y) surely
     // misses the model: a column walked down asks them one by one.

@@ -194,5 +194,10 @@ TEST(DiscLookup, ObstaclesAnswerAsTheExactTestDoes) {
             check(l, x, y, 1.5);
         }
     }
+    // Radii first counted without an entry of their own (kTrackAfter
+    // queries), then tracked, then given a lookup (kFastAfter): each stage
+    // answers as the exact test.
+    for (double r : {0.77, 0.83, 2.2})
+        for (int k = 0; k < 5000; ++k) check(k % 150, ux(rng), uy(rng), r);
     EXPECT_GT(blocked, asked / 20);  // the model is really in the way of some
 }
