@@ -90,8 +90,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
     // The model's answers, kept for the next round.
     const auto answers = known ? std::move(known) : std::make_shared<plan::ModelAnswers>();
     plan::BridgeReplay replay;  // the bridge search, resumed by the next round where it first differs
-    // brace_answers: the helper pillars dropped, bar_cache: the bar lines
-    // judged; both asked again by the next round.
+    // brace_answers (the helper pillars dropped) and bar_cache (the bar lines
+    // judged) are asked again by every round, and returned for a later join.
     // A plan made in rounds, each without the bars the last could not hold.
     struct Attempt {
         overhang::SupportPoints points;
@@ -319,7 +319,6 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             std::move(brace_answers), std::move(bar_cache), std::move(best.unbraced), best.left};
 }
 
-
 std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const layers::LayerStack& first_copy,
                                         const overhang::SupportPoints& detected, const overhang::Overhangs& overhangs,
                                         const layers::LayerStack& stack, const Settings& settings, spdlog::logger& log,
@@ -487,8 +486,9 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     std::vector<std::unique_ptr<const plan::Obstacles>> own(static_cast<std::size_t>(workers));
     // Each group's plan as plan_group left it. A joined group's plan starts
     // without the bars its parts' plans were made again without, with its
-    // first part's model answers (the same model) and, where each part has
-    // one, its parts' plans before braces side by side as its first round.
+    // first part's model answers (the same model), every part's brace and
+    // bar-check answers and, where each part has one, its parts' plans
+    // before braces side by side as its first round.
     std::vector<GroupPlanned> planned(groups.size());
     std::vector<plan::PlanReach> reach(groups.size());  // each plan's, for plans_apart
     std::vector<std::optional<plan::GroupPlan>> side_by_side(groups.size());

@@ -161,6 +161,21 @@ long microns(double v) {
     return static_cast<long>(m >= 0 ? m + 0.5 : m - 0.5);
 }
 
+// The sweep direction (of D, as evaluate() numbers them) a bar from
+// (x0, y0) to (x1, y1) lies along, that direction's unit vector (c, sn) and
+// the bar's offset v across it.
+struct SweepLine {
+    int k;
+    double c, sn, v;
+};
+SweepLine sweep_line(double x0, double y0, double x1, double y1, int D) {
+    double th = std::atan2(y1 - y0, x1 - x0);
+    if (th < 0) th += std::numbers::pi;
+    const int k = static_cast<int>(std::lround(th * D / std::numbers::pi)) % D;
+    const double a = k * std::numbers::pi / D, c = std::cos(a), sn = std::sin(a);
+    return {k, c, sn, -x0 * sn + y0 * c};
+}
+
 // rejected_lines_: 2^16 bits; a line's offset bucketed this finely (mm),
 // its neighbours asked too: the same bar (the same key, its ends to the
 // micron) lies on lines a micron or two apart at most.
@@ -168,13 +183,7 @@ constexpr std::size_t kRejectLineBits = std::size_t{1} << 16;
 constexpr double kRejectLineTol = 0.01;
 
 std::size_t reject_line_bit(int direction, long bucket, long z_microns) {
-    std::uint64_t h = static_cast<std::uint64_t>(direction) * 0x9E3779B97F4A7C15ull;
-    h ^= static_cast<std::uint64_t>(bucket) + 0x632BE59BD9B4E019ull + (h << 6) + (h >> 2);
-    h ^= static_cast<std::uint64_t>(z_microns) + 0x85EBCA77C2B2AE63ull + (h << 6) + (h >> 2);
-    h ^= h >> 29;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 32;
-    return static_cast<std::size_t>(h & (kRejectLineBits - 1));
+    return BarKeyHash{}(BarKey{direction, bucket, z_microns, 0, 0}) & (kRejectLineBits - 1);
 }
 
 }  // namespace
@@ -321,12 +330,10 @@ bool BridgeSearch::bar_clear(const ModelView& mv, Scratch& sc, double x0, double
         // and at the bar's own two ends; no sample past an end. So a bar is
         // sampled as densely as when it sampled its own length every two
         // cells (segment_clear, still asked where the view has no disc test).
-        const int D = s_.sweep_directions;
-        double th = std::atan2(y1 - y0, x1 - x0);
-        if (th < 0) th += std::numbers::pi;
-        const int k = static_cast<int>(std::lround(th * D / std::numbers::pi)) % D;
-        const double a = k * std::numbers::pi / D, c = std::cos(a), sn = std::sin(a);
-        const long v_key = std::lround((-x0 * sn + y0 * c) / kLineOffset);
+        const SweepLine along = sweep_line(x0, y0, x1, y1, s_.sweep_directions);
+        const int k = along.k;
+        const double c = along.c, sn = along.sn;
+        const long v_key = std::lround(along.v / kLineOffset);
         const double v = static_cast<double>(v_key) * kLineOffset;
         double ua = x0 * c + y0 * sn, ub = x1 * c + y1 * sn;
         if (ua > ub) std::swap(ua, ub);
@@ -771,15 +778,10 @@ std::optional<Candidate> BridgeSearch::best() {
 
 void BridgeSearch::mark_rejected(double x0, double y0, double x1, double y1, double z) {
     rejected_.insert(key_of(x0, y0, x1, y1, z), 1);
-    // The sweep direction the bar lies along, and its offset across it, as
-    // evaluate() has them for the seeds whose line this is.
-    const int D = s_.sweep_directions;
-    double th = std::atan2(y1 - y0, x1 - x0);
-    if (th < 0) th += std::numbers::pi;
-    const int k = static_cast<int>(std::lround(th * D / std::numbers::pi)) % D;
-    const double a = k * std::numbers::pi / D, v = -x0 * std::sin(a) + y0 * std::cos(a);
+    // Its line as evaluate() has it for the seeds on it.
+    const SweepLine line = sweep_line(x0, y0, x1, y1, s_.sweep_directions);
     if (rejected_lines_.empty()) rejected_lines_.assign(kRejectLineBits / 64, 0);
-    const std::size_t bit = reject_line_bit(k, static_cast<long>(std::floor(v / kRejectLineTol)), microns(z));
+    const std::size_t bit = reject_line_bit(line.k, static_cast<long>(std::floor(line.v / kRejectLineTol)), microns(z));
     rejected_lines_[bit / 64] |= std::uint64_t{1} << (bit % 64);
 }
 

@@ -440,20 +440,26 @@ ForbiddenLookup::ForbiddenLookup(const Forbidden& forbidden, double layer_height
     std::stable_sort(places_.begin(), places_.end(), [](const Xyz& a, const Xyz& b) { return a.z < b.z; });
 }
 
+template <class Place, class Bar>
+bool ForbiddenLookup::any_in_windows(double z, Place place, Bar bar) const {
+    const double pw = place_window(h_), bw = bar_window(h_);
+    for (auto it = std::lower_bound(places_.begin(), places_.end(), z - pw,
+                                    [](const Xyz& f, double zf) { return f.z < zf; });
+         it != places_.end() && it->z <= z + pw; ++it)
+        if (place(*it)) return true;
+    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), z - bw,
+                                    [](const Bridge& f, double zf) { return f.z < zf; });
+         it != bars_.end() && it->z <= z + bw; ++it)
+        if (bar(*it)) return true;
+    return false;
+}
+
 bool ForbiddenLookup::operator()(const Bridge& b) const {
     // Only those within their window of b's height can match (near_place and
     // near_bar test the same windows exactly): a bar search asks this of
     // every candidate.
-    const double pw = place_window(h_), bw = bar_window(h_);
-    for (auto it = std::lower_bound(places_.begin(), places_.end(), b.z - pw,
-                                    [](const Xyz& f, double z) { return f.z < z; });
-         it != places_.end() && it->z <= b.z + pw; ++it)
-        if (near_place(*it, b, h_)) return true;
-    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), b.z - bw,
-                                    [](const Bridge& f, double z) { return f.z < z; });
-         it != bars_.end() && it->z <= b.z + bw; ++it)
-        if (near_bar(*it, b, h_)) return true;
-    return false;
+    return any_in_windows(
+        b.z, [&](const Xyz& f) { return near_place(f, b, h_); }, [&](const Bridge& f) { return near_bar(f, b, h_); });
 }
 
 bool ForbiddenLookup::any_near(double z, double x_lo, double y_lo, double x_hi, double y_hi) const {
@@ -464,16 +470,11 @@ bool ForbiddenLookup::any_near(double z, double x_lo, double y_lo, double x_hi, 
                std::min(fy0, fy1) <= y_hi + m;
     };
     const double pw = place_window(h_), bw = bar_window(h_);
-    for (auto it = std::lower_bound(places_.begin(), places_.end(), z - pw,
-                                    [](const Xyz& f, double zf) { return f.z < zf; });
-         it != places_.end() && it->z <= z + pw; ++it)
-        if (std::abs(it->z - z) < pw && meets(it->x, it->y, it->x, it->y, kPlaceNear)) return true;
-    for (auto it = std::lower_bound(bars_.begin(), bars_.end(), z - bw,
-                                    [](const Bridge& f, double zf) { return f.z < zf; });
-         it != bars_.end() && it->z <= z + bw; ++it)
-        if (std::abs(it->z - z) < bw && meets(it->x0, it->y0, it->x1, it->y1, std::max(kForbiddenNear, kForbiddenBeside)))
-            return true;
-    return false;
+    return any_in_windows(
+        z, [&](const Xyz& f) { return std::abs(f.z - z) < pw && meets(f.x, f.y, f.x, f.y, kPlaceNear); },
+        [&](const Bridge& f) {
+            return std::abs(f.z - z) < bw && meets(f.x0, f.y0, f.x1, f.y1, std::max(kForbiddenNear, kForbiddenBeside));
+        });
 }
 
 Scaffold plan_scaffold(const overhang::SupportPoints& points, const layers::LayerStack& stack, const Obstacles& obs,

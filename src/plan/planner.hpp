@@ -62,6 +62,10 @@ public:
     bool any_near(double z, double x_lo, double y_lo, double x_hi, double y_hi) const;
 
 private:
+    // Whether `place` holds for a forbidden place or `bar` for a forbidden
+    // bar within their windows of height z (the others cannot be near).
+    template <class Place, class Bar>
+    bool any_in_windows(double z, Place place, Bar bar) const;
     std::vector<Bridge> bars_;
     std::vector<Xyz> places_;
     double h_ = 0;
