@@ -59,8 +59,18 @@ std::vector<std::size_t> bar_indices(const std::vector<toolpath::UnheldBar>& unh
 // hidden, once the plan is final (a group's may yet be replaced by a joined
 // one). The planner's judgement is the stricter (the validator lets 0.5 mm^2
 // of unheld bead pass): the output may still pass.
-void warn_left(spdlog::logger& log, std::pair<std::size_t, std::size_t> left, std::size_t points, int rounds,
-               const Settings& settings) {
+void warn_left(spdlog::logger& log, const GroupPlanned& g, int rounds, const Settings& settings) {
+    // Tips' columns with no room to widen and no neighbours to tie to.
+    if (!g.weak.empty()) {
+        const auto weakest = std::min_element(g.weak.begin(), g.weak.end(),
+                                              [](const plan::ShortColumn& a, const plan::ShortColumn& b) { return a.k < b.k; });
+        log.warn("{} support columns stand short of --min-stiffness {:g} N/mm as the planner judges them, the weakest "
+                 "{:.2f} N/mm at its top at z {:.2f} (no room to widen them, no ties that make them stand): the output "
+                 "is written; --check (or scaffold-check) says whether it passes",
+                 g.weak.size(), settings.min_stiffness, weakest->k, weakest->z);
+    }
+    const auto left = g.left;
+    const std::size_t points = g.points.points.size();
     if (left.first == 0 && left.second == 0) return;
     log.warn("after {} plans of {} support points, {} bars that carry points are still not held as built and {} stand "
              "on columns short of --min-stiffness {:g} N/mm, as the planner judges them: the output is written; "
@@ -105,6 +115,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         // Where the rounds ran out: its bars still not held that carry points,
         // and those on columns short of the rule.
         std::pair<std::size_t, std::size_t> left{0, 0};
+        std::vector<plan::ShortColumn> weak;  // its tips' columns short of the rule
     };
     // `given`: the first round's plan before braces (no bridge search).
     auto attempt = [&](plan::Forbidden forbidden, const plan::GroupPlan* given) -> Attempt {
@@ -116,6 +127,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         std::optional<plan::GroupPlan> unbraced;
         bool last_given = false;  // the last round's plan is `given`
         std::pair<std::size_t, std::size_t> left{0, 0};
+        std::vector<plan::ShortColumn> weak;
         // Should the rounds run out, each plan still keeping a few such bars: the
         // plan with the fewest not held that carry points (brace bars are left
         // out below), then with the fewest on columns short of the rule (those
@@ -125,6 +137,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             overhang::SupportPoints points;
             plan::Scaffold scaffold;
             toolpath::SupportPaths paths;
+            std::vector<plan::ShortColumn> weak;
         } kept;
         for (int round = 0;; ++round) {
             if (progress && round == 0) progress->say("planning {} support points", detected.points.size());
@@ -158,8 +171,9 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
             const Clock::time_point r2 = Clock::now();
             std::vector<std::size_t> short_of_rule;
             braced_bars.clear();
+            weak.clear();
             if (int n = plan::add_braces(scaffold, stack, obstacles, settings, forbidden, &short_of_rule, &brace_answers,
-                                         &braced_bars))
+                                         &braced_bars, &weak))
                 log.debug("{} bars brace weak columns", n);
             const Clock::time_point r3 = Clock::now();
             paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
@@ -220,13 +234,14 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                 static_cast<std::size_t>(
                     std::count_if(unheld.begin(), unheld.end(), [&](std::size_t i) { return !scaffold.bridges[i].brace; })),
                 short_of_rule.size()};
-            if (carrying < kept.bad) kept = {carrying, points, scaffold, paths};
+            if (carrying < kept.bad) kept = {carrying, points, scaffold, paths, weak};
             if (round == rounds) {
                 left = kept.bad;  // the plan kept below, or the last with as many
                 if (kept.bad < carrying) {
                     points = std::move(kept.points);
                     scaffold = std::move(kept.scaffold);
                     paths = std::move(kept.paths);
+                    weak = std::move(kept.weak);
                     bars_held = false;  // its brace bars not checked here
                     unbraced.reset();
                 }
@@ -253,7 +268,7 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
                       bad.size(), ms_between(t0, Clock::now()));
         }
         return {std::move(points), std::move(scaffold), std::move(paths), bars_held, std::move(forbidden),
-                std::move(braced_bars), std::move(unbraced), last_given, left};
+                std::move(braced_bars), std::move(unbraced), last_given, left, std::move(weak)};
     };
     // A bar whose end stands on a column too weak for the Standing rule
     // costs its braces too (bars, helper columns), which the bridge search
@@ -316,7 +331,8 @@ GroupPlanned plan_group(const overhang::SupportPoints& detected, const overhang:
         paths = toolpath::make_paths(scaffold, stack, settings, &obstacles);
     }
     return {std::move(points),         std::move(scaffold),      std::move(paths), std::move(learned), answers,
-            std::move(brace_answers), std::move(bar_cache), std::move(best.unbraced), best.left};
+            std::move(brace_answers), std::move(bar_cache), std::move(best.unbraced), best.left,
+            std::move(best.weak)};
 }
 
 std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const layers::LayerStack& first_copy,
@@ -360,7 +376,7 @@ std::optional<GroupPlanned> plan_copies(const layers::Copies& copies, const laye
     for (const plan::Bridge& b : one.scaffold.bridges)
         if (!inside(inner, b.x0, b.y0) || !inside(inner, b.x1, b.y1)) return past_the_window();
     const std::size_t count = detected.points.size();
-    warn_left(log, one.left, one.points.points.size(), rounds, settings);
+    warn_left(log, one, rounds, settings);
     log.debug("{} exact copies: one planned ({} support points, {:.0f} ms), its plan moved to the others", n, count,
               ms_between(t0, Clock::now()));
     std::vector<plan::PointGroup> groups(n);
@@ -473,7 +489,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     if (groups.size() <= 1) {
         GroupPlanned one = plan_group(detected, overhangs, stack, *obstacles, settings, cavities, log, req.bar_rounds,
                                       &progress, plan::worker_count(plan::kMaxPlanThreads, req.threads));
-        warn_left(log, one.left, one.points.points.size(), req.bar_rounds, settings);
+        warn_left(log, one, req.bar_rounds, settings);
         return one;
     }
     const int workers = plan::worker_count(groups.size(), req.threads);
@@ -600,7 +616,7 @@ GroupPlanned plan_plate(const Request& req, const overhang::SupportPoints& detec
     own.clear();
     std::vector<plan::GroupPlan> plans;
     for (GroupPlanned& p : planned) {
-        warn_left(log, p.left, p.points.points.size(), req.bar_rounds, settings);
+        warn_left(log, p, req.bar_rounds, settings);
         plans.push_back({std::move(p.points), std::move(p.scaffold)});
     }
     GroupPlanned all;

@@ -115,6 +115,8 @@ struct GroupPlanned {
     // Where the rounds ran out: its bars still not held that carry points,
     // and those on columns short of the rule (warn_left says so).
     std::pair<std::size_t, std::size_t> left{0, 0};
+    // Its tips' columns short of the Standing rule (warn_left says so too).
+    std::vector<plan::ShortColumn> weak;
 };
 
 // One group's plan, in rounds: each plan checked as built (every bar held,

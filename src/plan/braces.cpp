@@ -204,7 +204,8 @@ bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_coun
 
 double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
                       const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
-                      int chain_count, const Scaffold& sc, const layers::LayerStack& stack, const Settings& s) {
+                      int chain_count, const Scaffold& sc, const layers::LayerStack& stack, const Settings& s,
+                      const std::array<const std::vector<double>*, 3>& earlier) {
     // A path down: a node's give, then pieces of pillars, each between two heights.
     struct Piece {
         const PillarChain* chain;
@@ -228,13 +229,18 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
     bool joined = false;
     for (double b : levels) {
         std::array<double, 3> k{};
+        double k_most = 0;  // the strongest's k, as high as an earlier node could make it
         for (int i = 0; i < 3; ++i) {
             down[i].pieces.back().to = b;
             k[i] = 1 / compliance(down[i], b);
+            k_most = std::max(k_most, k[i]);
+            if (earlier[i])
+                for (double e : *earlier[i])
+                    if (e < b - kEps) k_most = std::max(k_most, 1 / chain_compliance(*cols[i], b, sc, stack, s, e, b));
         }
         const int best = static_cast<int>(std::max_element(k.begin(), k.end()) - k.begin());
         const bool node = !joined && distinct_columns(meetings, chain_count, {ids[0], ids[1], ids[2]}, lo, b) &&
-                          std::all_of(k.begin(), k.end(), [&](double ki) { return ki >= kBraceColumnShare * k[best]; });
+                          std::all_of(k.begin(), k.end(), [&](double ki) { return ki >= kBraceColumnShare * k_most; });
         joined = !node;
         lo = b;
         const Down stiffest = down[best];
@@ -333,7 +339,7 @@ double widen_untied(Scaffold& sc, int wi, const std::vector<PillarChain>& chains
 
 int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& obs, const Settings& s,
                const Forbidden& forbidden, std::vector<std::size_t>* short_of_rule, BraceAnswers* answers,
-               std::vector<std::size_t>* braced_bars) {
+               std::vector<std::size_t>* braced_bars, std::vector<ShortColumn>* short_columns) {
     const double target = target_stiffness(s);
     if (!(target > 0)) return 0;
     std::vector<PillarChain> chains = pillar_chains(sc);
@@ -406,9 +412,20 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     const int n = static_cast<int>(chains.size());
     // W's stiffness at its top, tied with P and Q (indices into chains, or
     // helpers past them) at these levels, meets the rule.
+    // The heights at which each chain (by index; helpers too, once placed)
+    // is tied already.
+    std::vector<std::vector<double>> ties_of(chains.size());
+    // A chain's earlier ties: W's own (ids[0] is always its index), or a
+    // placed chain's (not a helper being tried, whose id may be taken).
+    auto earlier_ties = [&](const PillarChain& c, int id, bool is_w) -> const std::vector<double>* {
+        if (id < 0 || id >= static_cast<int>(ties_of.size()) || (!is_w && &c != &chains[id])) return nullptr;
+        return &ties_of[id];
+    };
     auto nodes_stand = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
                            const std::vector<double>& levels, double give, const std::array<int, 3>& ids) {
-        return tied_stiffness({&W, &P, &Q}, ids, levels, give, meets, n, sc, stack, s) >= s.min_stiffness;
+        return tied_stiffness({&W, &P, &Q}, ids, levels, give, meets, n, sc, stack, s,
+                              {earlier_ties(W, ids[0], true), earlier_ties(P, ids[1], false),
+                               earlier_ties(Q, ids[2], false)}) >= s.min_stiffness;
     };
     // The triangle W, P, Q tied at every level: its bars, or none if one
     // fails or its nodes would not stand.
@@ -530,6 +547,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 const int p = t.ids[(corner + 1) % 3], q = t.ids[(corner + 2) % 3];
                 if (!together || !nodes_stand(W, chains[p], chains[q], t.levels, give, {wi, p, q})) continue;
                 for (double b : t.levels) nodes.push_back({b, {wi, p, q}});
+                ties_of[wi].insert(ties_of[wi].end(), t.levels.begin(), t.levels.end());
                 return true;
             }
         return false;
@@ -576,14 +594,19 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // two ties would not stand by itself: a thin column (the last
         // fallback, 1 mm across, 0.35 N/mm over 10 mm) every 5 mm or so.
         std::vector<double> fewest, grid;
-        for (double from = W.base; !alone(from, W.top);) {
+        // A partner tied already (by another's triangle, not standing
+        // with it) is tied again only above those ties: below, the node
+        // holds it (as its walk down does).
+        double start = W.base;
+        for (double e : ties_of[wi]) start = std::max(start, e);
+        for (double from = start; !alone(from, W.top);) {
             const double want = std::min(stands_to(from, W.top), W.top - 3.0);
             const std::size_t before = fewest.size();
             if (want > from + 1) add_tie(fewest, want);
             if (fewest.size() == before) break;
             from = fewest.back();
         }
-        for (double from = W.base, next = W.base + kBraceStep;;) {
+        for (double from = start, next = start + kBraceStep;;) {
             const double want = alone(from, next) ? next : stands_to(from, next);
             if (want <= from + 1 || want > W.top - 3.0) break;
             const std::size_t before = grid.size();
@@ -799,19 +822,36 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             for (int piece : W.pieces) bars_ending_at(sc.columns[piece], *braced_bars);
         braced[wi] = 1;
         std::vector<int> corner_ids{wi};
-        for (int c : corners) {
-            braced[c] = 1;
-            corner_ids.push_back(c);
-        }
+        corner_ids.insert(corner_ids.end(), corners.begin(), corners.end());
         for (const PillarChain& h : helpers) {
             corner_ids.push_back(static_cast<int>(chains.size()));
             chains.push_back(h);
             braced.push_back(1);
+            ties_of.emplace_back();
         }
+        std::vector<double> levels;
+        for (const Bridge& br : bars)
+            if (levels.empty() || std::abs(levels.back() - br.z) > kEps) levels.push_back(br.z);
+        // A partner is braced by W's ties only where they make its own top
+        // stand; else it is still weak, and looks for ties of its own when
+        // its turn comes (Cura's four bunnies at x +-26 mm: a column squeezed
+        // between two bunnies, tied at 10 mm as a partner, stood 22.5 mm
+        // higher at 1.56 N/mm, and was never looked at again).
+        for (int c : corners) {
+            const PillarChain& C = chains[c];
+            const double own_c = chain_compliance(C, C.hold, sc, stack, s), give_c = sc.columns[C.pieces.front()].give;
+            if (1 / own_c >= target && 1 / (own_c + give_c) >= kGiveMargin * s.min_stiffness) {
+                braced[c] = 1;
+                continue;
+            }
+            if (corner_ids.size() != 3) continue;
+            const int other = corner_ids[1] == c ? corner_ids[2] : corner_ids[1];
+            if (tied_stiffness({&C, &W, &chains[other]}, {c, wi, other}, levels, give_c, meets, n, sc, stack, s,
+                               {&ties_of[c], &ties_of[wi], &ties_of[other]}) >= s.min_stiffness)
+                braced[c] = 1;
+        }
+        for (int id : corner_ids) ties_of[id].insert(ties_of[id].end(), levels.begin(), levels.end());
         if (corner_ids.size() == 3) {
-            std::vector<double> levels;
-            for (const Bridge& br : bars)
-                if (levels.empty() || std::abs(levels.back() - br.z) > kEps) levels.push_back(br.z);
             for (double b : levels) {
                 const double zc = bar_layers(b).front().first;
                 for (int id : corner_ids)
@@ -868,6 +908,19 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     // that fits, at any share of the taper (the plan's own drop searches it
     // only at a quarter or less, leaving the rest to the braces). Last
     // first: a column's pieces are replaced where they stand in the list.
+    // (First, tips' columns that nothing made stand, as the walk judges them:
+    // before the widening moves the pieces.)
+    if (short_columns) {
+        std::optional<PlanWalk> walk;
+        for (int wi : untied) {
+            const PillarChain& W = chains[wi];
+            const Column& top = sc.columns[W.pieces.back()];
+            if (braced[wi] || top.top == Top::Bridge) continue;
+            if (!walk) walk.emplace(chains, nodes, sc, stack, s);
+            const double k = 1 / (walk->path(wi, W.hold).at(W.hold) + sc.columns[W.pieces.front()].give);
+            if (k < s.min_stiffness) short_columns->push_back({top.x1, top.y1, W.hold, k});
+        }
+    }
     for (auto it = untied.rbegin(); it != untied.rend(); ++it) {
         if (braced[*it]) continue;
         const Column top = sc.columns[chains[*it].pieces.back()];

@@ -88,10 +88,15 @@ bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_coun
 // strongest's, a node, on whose give (one over the sum of their k) each
 // part above starts afresh; else what stands on the tie follows the
 // stiffest of them down (a twig tied to a trunk rides on the trunk).
+// `earlier[i]` (null: none): heights at which cols[i] is tied already, by
+// other triangles; the validator may walk it down through a node there, so
+// in the share test its k at a tie is taken as high as that could make it
+// (the part from that height up, on a node that does not give), the others'
+// as low as their own ways down make them.
 double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
                       const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
                       int chain_count, const Scaffold& scaffold, const layers::LayerStack& stack,
-                      const Settings& settings);
+                      const Settings& settings, const std::array<const std::vector<double>*, 3>& earlier = {});
 
 // Ties each pillar weaker than target_stiffness at the top of what it holds
 // to two neighbours (triangles whose angles are all 30 degrees or more), at
@@ -114,10 +119,18 @@ struct BraceAnswers {
     std::map<std::array<std::uint64_t, 6>, std::optional<std::vector<Column>>> helpers;
 };
 
+// A tip's column (no bar on it) that neither a triangle nor its widening
+// made stand: its top, and its stiffness there as the planner judges it.
+struct ShortColumn {
+    double x = 0, y = 0, z = 0, k = 0;
+};
+
 // `answers` (optional): kept by the caller over plans made again.
+// `short_columns` (optional) gets the tips' columns still short of
+// --min-stiffness (those under a bar go to `short_of_rule`).
 int add_braces(Scaffold& scaffold, const layers::LayerStack& stack, const Obstacles& obstacles,
                const Settings& settings, const Forbidden& forbidden,
                std::vector<std::size_t>* short_of_rule = nullptr, BraceAnswers* answers = nullptr,
-               std::vector<std::size_t>* braced_bars = nullptr);
+               std::vector<std::size_t>* braced_bars = nullptr, std::vector<ShortColumn>* short_columns = nullptr);
 
 }  // namespace scaffold::plan

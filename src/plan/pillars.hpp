@@ -123,7 +123,9 @@ bool bar_end_stands(double x, double y, int overhang_layer, const layers::LayerS
 // (found with less taper than the rule asks), widened along the same way
 // down: each loop as wide as the room on its layer allows, up to the full
 // taper, changing per layer no more than a loop may step out on the one
-// below; a bottom loop on the model stays as it was. `chain`: one column's
+// below; a bottom loop on the model stays as it was. Where the room caps it
+// short of the rule, the least taper (up to kMaxTaper) with which the
+// capped column stands, if any does. `chain`: one column's
 // pieces, bottom first, as drop_pillar gives them. True where it got wider
 // (and so stiffer); `give` as drop_pillar's.
 bool widen_column(std::vector<Column>& chain, const layers::LayerStack& stack, const Obstacles& obstacles,

@@ -357,6 +357,32 @@ TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATw
     EXPECT_GT(stiffness(sc, {10.0, 20.0}), 5 * 0.10797);
 }
 
+// The same triangle tied at 20 mm, where the first column is tied already
+// at 10 mm by a triangle of its own: the validator may walk it down
+// through that node, where it stands up to 1 / ((10^3 / 3 - 50 x 0.2^3 /
+// 12) / 2303.22) = 1 / 0.144710 = 6.9104 N/mm at 20 (a node that does not
+// give), and the others' 0.8637 each are under the planner's share of it
+// (0.275 x 6.9104 = 1.900): twigs beside a trunk, no node (METHOD). The top
+// then follows the stiffest path down the planner knows, its own: 0.10797
+// N/mm, where without that earlier tie it counted on 0.6478. A tie above
+// 20 mm is no way down for the tie at 20.
+TEST_F(BraceScene, AColumnTiedAlreadyLowerDownMakesTheOthersTwigsAtATieAbove) {
+    sc.columns.push_back(plain(30, 30, 40));
+    sc.columns.push_back(plain(40, 30, 40));
+    sc.columns.push_back(plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40));
+    const auto chains = plan::pillar_chains(sc);
+    const auto meets = plan::column_meetings(chains, sc, st, s);
+    auto stiffness = [&](const std::vector<double>* earlier) {
+        return plan::tied_stiffness({&chains[0], &chains[1], &chains[2]}, {0, 1, 2}, {20.0}, 0.0, meets,
+                                    static_cast<int>(chains.size()), sc, st, s, {earlier, nullptr, nullptr});
+    };
+    EXPECT_NEAR(plan::chain_compliance(chains[0], 20, sc, st, s, 10), 0.144710, 1e-6);
+    EXPECT_NEAR(stiffness(nullptr), 0.64779, 1e-4);
+    const std::vector<double> at_10{10.0}, at_30{30.0};
+    EXPECT_NEAR(stiffness(&at_10), 0.10797, 1e-4);
+    EXPECT_NEAR(stiffness(&at_30), 0.64779, 1e-4);
+}
+
 // A column under a bar end inside a square tube of model (12 mm outside,
 // walls at 34 and 46 mm): a helper 10 or 12 mm away stands outside it and
 // no bar crosses the wall, so no triangle ties the column. It is dropped
@@ -558,4 +584,38 @@ TEST(Braces, ATieBlockedAtItsLevelsIsTriedLower) {
     EXPECT_NEAR(chains[1].top, 7, 1e-6);
     EXPECT_NEAR(chains[2].top, 7, 1e-6);
     EXPECT_GT(1 / plan::chain_compliance(chains[0], 16, sc, st, s, 7), 9.4);
+}
+
+// A partner is braced by another's triangle only where the ties make its
+// own top stand. A 15 mm column A (2.047 N/mm, under the planner's 2.5)
+// beside two tips' columns B and C 40 mm tall: A is tied to them where it
+// stops standing 2.2 N/mm, its top less 3 mm, 12 mm. The node there holds
+// A's top, but B's and C's stand 28 mm above it: each column's k at 12 is
+// 1 / ((12^3 / 3 - 60 x 0.2^3 / 12) / 2303.22) = 1 / 0.250075 = 3.9988,
+// the node's give 1 / (3 x 3.9988) = 0.083358, and 28 mm of ring above it
+// (28^3 / 3 - 140 x 0.2^3 / 12) / 2303.22 = 3.176977: 1 / 3.260335 =
+// 0.3067 N/mm. Neither is counted as braced: each is looked at as a weak
+// column of its own, tied again only above 12 mm, where a plain helper from
+// the bed is a twig beside a column standing on that node; so no triangle
+// ties them, and they are named short of the rule with the walk's figure
+// (they were counted as braced, and the run said nothing).
+TEST_F(BraceScene, APartnerLeftShortByAnothersTriangleIsNotCountedAsBraced) {
+    sc.columns.push_back(plain(30, 30, 15));
+    plan::Column b = plain(40, 30, 40), c = plain(35, 30 + 10 * std::sqrt(3.0) / 2, 40);
+    b.top = c.top = plan::Top::Contact;
+    sc.columns.push_back(b);
+    sc.columns.push_back(c);
+    EXPECT_NEAR(1 / plan::chain_compliance(plan::pillar_chains(sc)[0], 15, sc, st, s), 2.047, 0.001);
+    std::vector<plan::ShortColumn> weak;
+    EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}, nullptr, nullptr, nullptr, &weak), 3);
+    for (const plan::Bridge& br : sc.bridges) EXPECT_NEAR(br.z, 12, 1e-9);
+    EXPECT_EQ(sc.columns.size(), 3u);
+    ASSERT_EQ(weak.size(), 2u);
+    std::set<std::pair<double, double>> at;
+    for (const plan::ShortColumn& w : weak) {
+        at.insert({w.x, w.y});
+        EXPECT_NEAR(w.z, 40, 1e-9);
+        EXPECT_NEAR(w.k, 0.3067, 0.0001);
+    }
+    EXPECT_EQ(at, (std::set<std::pair<double, double>>{{40, 30}, {35, 30 + 10 * std::sqrt(3.0) / 2}}));
 }
