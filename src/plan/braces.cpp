@@ -410,8 +410,6 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
     };
     const std::vector<ColumnMeeting> meets = column_meetings(chains, sc, stack, s);
     const int n = static_cast<int>(chains.size());
-    // W's stiffness at its top, tied with P and Q (indices into chains, or
-    // helpers past them) at these levels, meets the rule.
     // The heights at which each chain (by index; helpers too, once placed)
     // is tied already.
     std::vector<std::vector<double>> ties_of(chains.size());
@@ -421,6 +419,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         if (id < 0 || id >= static_cast<int>(ties_of.size()) || (!is_w && &c != &chains[id])) return nullptr;
         return &ties_of[id];
     };
+    // W's stiffness at its top, tied with P and Q (indices into chains, or
+    // helpers past them) at these levels, meets the rule.
     auto nodes_stand = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
                            const std::vector<double>& levels, double give, const std::array<int, 3>& ids) {
         return tied_stiffness({&W, &P, &Q}, ids, levels, give, meets, n, sc, stack, s,
@@ -904,12 +904,8 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                 short_of_rule->push_back(static_cast<std::size_t>(left.front().bar));
         }
     }
-    // Weak columns under a bar that no triangle ties: the widest way down
-    // that fits, at any share of the taper (the plan's own drop searches it
-    // only at a quarter or less, leaving the rest to the braces). Last
-    // first: a column's pieces are replaced where they stand in the list.
-    // (First, tips' columns that nothing made stand, as the walk judges them:
-    // before the widening moves the pieces.)
+    // Tips' columns that nothing made stand, as the walk judges them (before
+    // the widening below moves the pieces): named, not hidden.
     if (short_columns) {
         std::optional<PlanWalk> walk;
         for (int wi : untied) {
@@ -921,6 +917,10 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             if (k < s.min_stiffness) short_columns->push_back({top.x1, top.y1, W.hold, k});
         }
     }
+    // Weak columns under a bar that no triangle ties: the widest way down
+    // that fits, at any share of the taper (the plan's own drop searches it
+    // only at a quarter or less, leaving the rest to the braces). Last
+    // first: a column's pieces are replaced where they stand in the list.
     for (auto it = untied.rbegin(); it != untied.rend(); ++it) {
         if (braced[*it]) continue;
         const Column top = sc.columns[chains[*it].pieces.back()];
