@@ -17,6 +17,17 @@ using namespace scaffold;
 
 namespace {
 
+// A plain 2 mm column under a bar end at (50, 50), from the bed to z1.
+plan::Column bar_column_at_50(double z1) {
+    plan::Column c;
+    c.x0 = c.x1 = 50;
+    c.y0 = c.y1 = 50;
+    c.z1 = c.hold_z = z1;
+    c.radius = 1.0;
+    c.top = plan::Top::Bridge;
+    return c;
+}
+
 // 0.2 mm layers up to `layers`, a speck of model far away on each (the
 // real Obstacles), and what `more` adds to layer i.
 template <class More>
@@ -905,13 +916,7 @@ TEST(PlanPillars, AColumnWidensBesideASkirtLineToItsOwnGap) {
         },
         {-5, -5, 80, 80});
     const plan::Obstacles obs(st, s);
-    plan::Column plain;
-    plain.x0 = plain.x1 = 50;
-    plain.y0 = plain.y1 = 50;
-    plain.z1 = plain.hold_z = 40;
-    plain.radius = 1.0;
-    plain.top = plan::Top::Bridge;
-    std::vector<plan::Column> chain{plain};
+    std::vector<plan::Column> chain{bar_column_at_50(40)};
     ASSERT_TRUE(plan::widen_column(chain, st, obs, s));
     auto radius_at = [&](double z) {
         for (const plan::Column& c : chain)
@@ -1008,16 +1013,12 @@ TEST(PlanPillars, AColumnAtABrimsEdgeStepsOntoTheBrim) {
 // taper where the walls leave room, above and below them, it stands.
 TEST(PlanPillars, AColumnCappedBesideTheModelTakesMoreTaperWhereThereIsRoom) {
     Settings s;
-    const layers::LayerStack st = test::stack_of(
-        203,
-        [](int i, layers::Layer& l) {
-            test::bead(l, 0, 0, 0.5, 0, gcode::Role::Perimeter);
-            if (i >= 40 && i < 100) {  // z 8.2 to 20
-                test::bead(l, 47.4, 40, 47.4, 60, gcode::Role::Perimeter);
-                test::bead(l, 52.6, 40, 52.6, 60, gcode::Role::Perimeter);
-            }
-        },
-        {-5, -5, 80, 80});
+    const layers::LayerStack st = stack_with(203, [](int i, layers::Layer& l) {
+        if (i >= 40 && i < 100) {  // z 8.2 to 20
+            test::bead(l, 47.4, 40, 47.4, 60, gcode::Role::Perimeter);
+            test::bead(l, 52.6, 40, 52.6, 60, gcode::Role::Perimeter);
+        }
+    });
     const plan::Obstacles obs(st, s);
     const double w = s.support_width, e = s.modulus;
     const double full = plan::taper_for(1.0, 40, plan::target_stiffness(s), 0, w, e);
@@ -1028,13 +1029,7 @@ TEST(PlanPillars, AColumnCappedBesideTheModelTakesMoreTaperWhereThereIsRoom) {
                           plan::ring_compliance(1.0, full, 40, 0, 8, w, e);
     EXPECT_NEAR(plan::ring_compliance(1.9, 0, 40, 8, 20, w, e), 0.3551, 0.0001);
     EXPECT_NEAR(1 / capped, 1.654, 0.001);
-    plan::Column plain;
-    plain.x0 = plain.x1 = 50;
-    plain.y0 = plain.y1 = 50;
-    plain.z1 = plain.hold_z = 40;
-    plain.radius = 1.0;
-    plain.top = plan::Top::Bridge;
-    std::vector<plan::Column> chain{plain};
+    std::vector<plan::Column> chain{bar_column_at_50(40)};
     ASSERT_TRUE(plan::widen_column(chain, st, obs, s));
     plan::Scaffold sc;
     sc.columns = chain;
