@@ -32,10 +32,13 @@ struct Request {
     // each; false plans it whole, as any other plate.
     bool plan_copies = true;
     // Plans made again without the bars the one before could not hold as
-    // built, at most (11 plans in all: Cura's bunny with one wall settles at
+    // built, at most (21 plans in all: Cura's bunny with one wall settles at
     // the 8th; at 7 a plate of eight bunnies ended with a bar unheld in each
-    // copy). Where they run out with such bars left, the run warns.
-    int bar_rounds = 10;
+    // copy; Cura's four bunnies with an extruder profile, without the
+    // detector's specks at a skin's gaps, at the 13th). Where they run out
+    // with such bars left, the run warns. Only a plan that keeps failing
+    // pays for them.
+    int bar_rounds = 20;
     // --check: the written output judged by scaffold-check's rules against
     // the input (as `scaffold-check OUT --original IN` with the run's gap,
     // overhang angle, resolution and --min-stiffness), each failure warned.

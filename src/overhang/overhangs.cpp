@@ -254,7 +254,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
     // reallocated: the layer beneath (all its material, and the part of it
     // that can enclose a hole: a skirt or brim loop holds what lies on it but
     // encloses nothing, as in the validator), and this layer's overhang.
-    layers::BitGrid below = proto, rim = proto, held = proto, over = proto;
+    layers::BitGrid below = proto, rim = proto, held = proto, over = proto, seeds = proto;
     // What each scratch grid may hold: work stays inside the layers' boxes.
     layers::CellBox below_box, held_box, over_box;
     bool below_has_skirt = false, over_drawn = false;
@@ -315,6 +315,28 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         over_index = n;
         over_drawn = false;
         const auto& segs = layer.segments;
+        // Rule (a) over a hole the layer beneath encloses (a gap between a
+        // skin's lines, sparse infill under a skin): a centre-line sample
+        // there is held, as the validator holds it, before rule (b) and
+        // before any bead is drawn. Judged after drawing, a bead's sides
+        // over the hole's rim stayed overhang: 421 one-cell specks under a
+        // Cura mushroom's cap that the validator finds held, all dropped.
+        bool any_seed = false;
+        for (std::size_t k = 0; k < segs.size(); ++k) {
+            if (gcode::is_support(segs[k].role) || all_samples_held(segs, k, k, held, s.resolution)) continue;
+            samples.clear();
+            layers::sample_segment(segs[k], static_cast<std::uint32_t>(k), held, s.resolution, samples);
+            for (const Sample& sm : samples)
+                if (!sm.held) {
+                    seeds.set(seeds.col(sm.x), seeds.row(sm.y));
+                    any_seed = true;
+                }
+        }
+        if (any_seed) {
+            held |= (below_has_skirt ? rim : below).enclosed(seeds, over_box);
+            held_box = layers::united(held_box, over_box);
+            seeds.clear(over_box);
+        }
         // A bead is held where its centre line is held (METHOD.md's rule,
         // the one scaffold-check applies): only the unheld stretches of the
         // centre line make overhang, drawn at the bead's width. The span is
