@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # A plate from a slicer that makes no exact copies: four corpus bunnies
 # sliced by CuraEngine 4.13 (the Debian package; Ender 3 defaults, 0.1 mm
-# layers, supports off; 14 s of CuraEngine and 5 of scaffold). They form
-# two objects, planned as two groups whose plans come within 2 mm, then
-# joined as one. The joined group's first round is its parts' plans side
-# by side, braced and checked as one: they hold, so the whole is not
-# searched again (since stop 55: 7.4 s against 5.3). It starts without the
-# bars its parts' plans found not held as built, and is made once. The
-# output passes scaffold-check (held, standing). Skipped (77) without
-# CuraEngine or ../shared's bunny; no synthetic scene in the suite gets bars
-# not held by its plans.
+# layers, supports off; 14 s of CuraEngine and 2 of scaffold). They form
+# two objects, planned as two independent groups. Cura's
+# skins leave gaps between their lines: over them rule (a) holds what the
+# layer beneath encloses, and the detector must hold it as the validator
+# does. Before stop 57 it kept a cell of a bead's side over each gap's rim
+# as overhang, chained over layers: 33 points dropped, 911 mm of support
+# (columns up to 45 mm tall under specks inside solid skin) where 74.5 mm
+# hold every overhang. No point is dropped now, and the output passes
+# scaffold-check (held, standing). (Those tall columns also made the two
+# groups' plans meet: this plate was the suite's joined plate with bars its
+# parts found not held; joining is tested on synthetic plates in
+# plates_test and plate_test.) Skipped (77) without CuraEngine or
+# ../shared's bunny.
 set -euo pipefail
 build="$1"; src="$2"
 stl_gz="$src/../shared/corpus/bunny.stl.gz"
@@ -26,23 +30,21 @@ for at in "-30 -25" "30 -25" "-30 25" "30 25"; do
 done
 # As sliced in stop 52, where the plate was found: the extruders' folder not
 # on CuraEngine's search path, so it takes its own defaults for the
-# extruder's settings (it says so and slices). With the extruder's profile
-# these four bunnies plan apart: this is the plate whose plans come close.
+# extruder's settings (it says so and slices).
 (cd "$tmp" && CURA_ENGINE_SEARCH_PATH="$defs" \
   CuraEngine slice -j "$defs/creality_ender3.def.json" -s support_enable=false -s adhesion_type=skirt \
   -s machine_end_gcode=M84 "${meshes[@]}" -o plate.gcode > slice.log 2>&1) ||
   { echo "FAIL: CuraEngine could not slice the plate:"; tail -5 "$tmp/slice.log"; exit 1; }
 "$build/scaffold" -v "$tmp/plate.gcode" -o "$tmp/out.gcode" 2> "$tmp/log" || { echo "FAIL: scaffold:"; tail -5 "$tmp/log"; exit 1; }
 fail=0
-grep -q "plans of 2 groups came close: planned again as 1" "$tmp/log" ||
-  { echo "FAIL: the plate was not planned as two groups joined (the scene no longer tests the joined plan)"; fail=1; }
-learned="$(sed -n 's/.*a joined group starts without the \([0-9]*\) bars.*/\1/p' "$tmp/log")"
-[ -n "$learned" ] && [ "$learned" -gt 0 ] || { echo "FAIL: the joined group started with no bar its parts found not held"; fail=1; }
-grep -q "the parts' plans side by side hold: not planned again" "$tmp/log" ||
-  { echo "FAIL: the joined group's parts' plans did not hold side by side"; fail=1; }
-again="$(sed -n '/came close/,$p' "$tmp/log" | grep -c "planning again without them" || true)"
-[ "$again" -eq 0 ] || { echo "FAIL: the joined plan was made again $again times for bars not held"; fail=1; }
+grep -q "support points in 2 independent groups" "$tmp/log" ||
+  { echo "FAIL: the plate was not planned as two independent groups"; fail=1; }
+summary="$(grep -E "info: [0-9]+ support points, " "$tmp/log" || true)"
+[ -n "$summary" ] || { echo "FAIL: no summary line"; fail=1; }
+if grep -q "points dropped" <<< "$summary"; then
+  echo "FAIL: points dropped (specks over a skin's gaps?): $summary"; fail=1
+fi
 "$build/scaffold-check" "$tmp/out.gcode" --original "$tmp/plate.gcode" > "$tmp/check" 2>&1 ||
   { echo "FAIL: scaffold-check:"; tail -8 "$tmp/check"; fail=1; }
 [ "$fail" -eq 0 ] || exit 1
-echo "cura plate: 4 bunnies, 2 groups joined; their plans held side by side (no search of the whole); the joined plan started without $learned bars its parts found not held and was made once; scaffold-check passes"
+echo "cura plate: 4 bunnies, 2 independent groups, no point dropped; scaffold-check passes (${summary#*info: })"
