@@ -321,9 +321,13 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
         // before any bead is drawn. Judged after drawing, a bead's sides
         // over the hole's rim stayed overhang: 421 one-cell specks under a
         // Cura mushroom's cap that the validator finds held, all dropped.
-        bool any_seed = false;
+        // Every sample of every bead held (most layers): no piece can be
+        // unheld, nothing is judged or drawn.
+        bool any_unheld = false, any_seed = false;
         for (std::size_t k = 0; k < segs.size(); ++k) {
-            if (gcode::is_support(segs[k].role) || all_samples_held(segs, k, k, held, s.resolution)) continue;
+            if (all_samples_held(segs, k, k, held, s.resolution)) continue;
+            any_unheld = true;
+            if (gcode::is_support(segs[k].role)) continue;
             samples.clear();
             layers::sample_segment(segs[k], static_cast<std::uint32_t>(k), held, s.resolution, samples);
             for (const Sample& sm : samples)
@@ -337,6 +341,7 @@ void find_regions_in(const layers::LayerStack& stack, const Settings& s, const l
             held_box = layers::united(held_box, over_box);
             seeds.clear(over_box);
         }
+        if (!any_unheld) continue;
         // A bead is held where its centre line is held (METHOD.md's rule,
         // the one scaffold-check applies): only the unheld stretches of the
         // centre line make overhang, drawn at the bead's width. The span is
