@@ -552,15 +552,22 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             }
         return false;
     };
+    // The give of what stands on a chain (its connectors' worst case).
+    auto give_of = [&](const PillarChain& c) { return sc.columns[c.pieces.front()].give; };
+    // Whether a chain stands untied. With what stands on it too: a column
+    // under a bar end stands the rule at the top of the bar's connectors
+    // only if it leaves them their give (a capped foot beside a skirt can
+    // take that), judged with a smaller margin (the give is the
+    // connectors' worst case).
+    auto stands_untied = [&](const PillarChain& c) {
+        const double own = chain_compliance(c, c.hold, sc, stack, s);
+        return 1 / own >= target && 1 / (own + give_of(c)) >= kGiveMargin * s.min_stiffness;
+    };
     for (int wi = 0; wi < weak_count; ++wi) {
         if (braced[wi]) continue;
         const PillarChain W = chains[wi];
-        // With what stands on it too: a column under a bar end stands the
-        // rule at the top of the bar's connectors only if it leaves them
-        // their give (a capped foot beside a skirt can take that), judged
-        // with a smaller margin (the give is the connectors' worst case).
-        const double own = chain_compliance(W, W.hold, sc, stack, s), give = sc.columns[W.pieces.front()].give;
-        if (1 / own >= target && 1 / (own + give) >= kGiveMargin * s.min_stiffness) continue;
+        const double give = give_of(W);
+        if (stands_untied(W)) continue;
         if (shares_a_triangle(wi, W, give)) {
             braced[wi] = 1;
             continue;
@@ -839,14 +846,13 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // higher at 1.56 N/mm, and was never looked at again).
         for (int c : corners) {
             const PillarChain& C = chains[c];
-            const double own_c = chain_compliance(C, C.hold, sc, stack, s), give_c = sc.columns[C.pieces.front()].give;
-            if (1 / own_c >= target && 1 / (own_c + give_c) >= kGiveMargin * s.min_stiffness) {
+            if (stands_untied(C)) {
                 braced[c] = 1;
                 continue;
             }
             if (corner_ids.size() != 3) continue;
             const int other = corner_ids[1] == c ? corner_ids[2] : corner_ids[1];
-            if (tied_stiffness({&C, &W, &chains[other]}, {c, wi, other}, levels, give_c, meets, n, sc, stack, s,
+            if (tied_stiffness({&C, &W, &chains[other]}, {c, wi, other}, levels, give_of(C), meets, n, sc, stack, s,
                                {&ties_of[c], &ties_of[wi], &ties_of[other]}) >= s.min_stiffness)
                 braced[c] = 1;
         }
@@ -878,7 +884,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             // Judged at its own top, and at the top of what stands on it
             // with their give: short by the walk where its own way down is not.
             const PillarChain& W = chains[wi];
-            const double give = sc.columns[W.pieces.front()].give;
+            const double give = give_of(W);
             const WalkSums walked = walk.path(wi, W.top);
             auto diverted = [&](double top, double extra) {
                 return 1 / (walked.at(top) + extra) < s.min_stiffness &&
@@ -913,7 +919,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             const Column& top = sc.columns[W.pieces.back()];
             if (braced[wi] || top.top == Top::Bridge) continue;
             if (!walk) walk.emplace(chains, nodes, sc, stack, s);
-            const double k = 1 / (walk->path(wi, W.hold).at(W.hold) + sc.columns[W.pieces.front()].give);
+            const double k = 1 / (walk->path(wi, W.hold).at(W.hold) + give_of(W));
             if (k < s.min_stiffness) short_columns->push_back({top.x1, top.y1, W.hold, k});
         }
     }
