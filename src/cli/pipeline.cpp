@@ -383,6 +383,14 @@ Outcome run(const Request& req, spdlog::logger& log) {
                  "object in the printer would drop them", spliced.blocks_split);
     for (const plan::Xyz& e : scaffold.unheld_bridge_ends)
         log.warn("a bridge end at ({:.2f}, {:.2f}, z {:.2f}) has no pillar under it: check that bridge", e.x, e.y, e.z);
+    if (!scaffold.uncovered.empty()) {
+        const plan::Xyz& u = *std::min_element(scaffold.uncovered.begin(), scaffold.uncovered.end(),
+                                               [](const plan::Xyz& a, const plan::Xyz& b) { return a.z < b.z; });
+        log.warn("{} places on overhangs rest on no support tip: no column fits under them (a narrow slot, a crotch), "
+                 "the lowest at ({:.2f}, {:.2f}) on the layer at z {:.2f}; the output is written, --check (or scaffold-check) says "
+                 "whether it passes",
+                 scaffold.uncovered.size(), u.x, u.y, u.z);
+    }
     std::optional<check::CheckReport> checked;
     if (req.check) {
         if (!req.output_text && (req.output == "-" || gcode::is_device(req.output))) {
@@ -431,6 +439,12 @@ Outcome run(const Request& req, spdlog::logger& log) {
         j += "  \"unheld_bridge_ends\": [";
         for (std::size_t i = 0; i < scaffold.unheld_bridge_ends.size(); ++i) {
             const plan::Xyz& e = scaffold.unheld_bridge_ends[i];
+            j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", e.x, e.y, e.z);
+        }
+        j += "],\n";
+        j += "  \"uncovered\": [";
+        for (std::size_t i = 0; i < scaffold.uncovered.size(); ++i) {
+            const plan::Xyz& e = scaffold.uncovered[i];
             j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", e.x, e.y, e.z);
         }
         j += "],\n";

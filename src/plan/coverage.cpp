@@ -58,8 +58,10 @@ std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, co
                          const layers::LayerStack& stack, const Obstacles& obs, const Settings& s, double steer,
                          int rounds) {
     std::size_t added = 0;
+    scaffold.uncovered.clear();
     for (int round = 0; round < rounds; ++round) {
         const overhang::SupportPoints more = overhang::place_points(unheld_by_tips(overhangs, scaffold, stack, obs, s), stack, s);
+        scaffold.uncovered.clear();
         if (more.points.empty()) break;
         const std::size_t first = points.points.size(), columns = scaffold.columns.size();
         points.points.insert(points.points.end(), more.points.begin(), more.points.end());
@@ -75,6 +77,9 @@ std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, co
             if (!std::binary_search(scaffold.dropped_points.begin(), scaffold.dropped_points.end(), static_cast<int>(i))) {
                 index[i] = static_cast<int>(kept);
                 points.points[kept++] = points.points[i];
+            } else {
+                const overhang::SupportPoint& p = points.points[i];
+                scaffold.uncovered.push_back({p.x, p.y, stack.layers[p.layer].z});  // the overhanging layer's
             }
         points.points.resize(kept);
         std::erase_if(scaffold.dropped_points, [&](int i) { return i >= static_cast<int>(first); });

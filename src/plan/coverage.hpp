@@ -22,7 +22,8 @@ overhang::Overhangs unheld_by_tips(const overhang::Overhangs& overhangs, const S
 // Up to `rounds` times: points on what the plan's tips leave unheld, each
 // with a pillar (add_pillars, lean_in.hpp); points no pillar reaches are taken out again
 // (the ones of the first plan stay, dropped), and a round that adds no
-// pillar ends it. Returns the number of points added.
+// pillar ends it. Returns the number of points added; the last round's
+// points no pillar reaches are left in scaffold.uncovered (said to the user).
 std::size_t cover_unheld(Scaffold& scaffold, overhang::SupportPoints& points, const overhang::Overhangs& overhangs,
                          const layers::LayerStack& stack, const Obstacles& obstacles, const Settings& settings,
                          double steer, int rounds);

@@ -281,6 +281,7 @@ Scaffold merge_plans(const overhang::SupportPoints& input, const std::vector<Poi
         for (int p : plan.scaffold.dropped_points) out.dropped_points.push_back(renumber(p));
         out.unheld_bridge_ends.insert(out.unheld_bridge_ends.end(), plan.scaffold.unheld_bridge_ends.begin(),
                                       plan.scaffold.unheld_bridge_ends.end());
+        out.uncovered.insert(out.uncovered.end(), plan.scaffold.uncovered.begin(), plan.scaffold.uncovered.end());
     }
     std::sort(out.dropped_points.begin(), out.dropped_points.end());
     return out;
@@ -320,6 +321,10 @@ GroupPlan moved(const GroupPlan& plan, double dx, double dy) {
         b.y1 += dy;
     }
     for (Xyz& e : out.scaffold.unheld_bridge_ends) {
+        e.x += dx;
+        e.y += dy;
+    }
+    for (Xyz& e : out.scaffold.uncovered) {
         e.x += dx;
         e.y += dy;
     }

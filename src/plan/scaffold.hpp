@@ -69,6 +69,11 @@ struct Scaffold {
     // Bridge ends no pillar reached. Never seen: a bar is a candidate only
     // where a pillar stands under both ends; reported, should it happen.
     std::vector<Xyz> unheld_bridge_ends;
+    // Points on overhang no tip of the plan holds (METHOD's rule (c)) where
+    // no pillar fits under the sheet (a slot, the crotch of a tusk): the
+    // last round of plan::cover_unheld's points that got none, at the
+    // height of the overhanging layer.
+    std::vector<Xyz> uncovered;
 };
 
 }  // namespace scaffold::plan

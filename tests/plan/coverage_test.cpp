@@ -97,6 +97,7 @@ TEST(Coverage, WhatATipLeavesGetsAPointAndAPillar) {
     }
     for (const auto& c : sc.columns) EXPECT_LT(c.point, static_cast<int>(points.points.size()));
     EXPECT_TRUE(plan::unheld_by_tips(over, sc, st, obs, s).layers.empty());
+    EXPECT_TRUE(sc.uncovered.empty());  // all of the sheet held: nothing to tell the user
 }
 
 // A sheet 10 mm long (layer 20, z 4.2) over two walls 1.4 mm apart and 22 mm
@@ -142,4 +143,22 @@ TEST(Coverage, APointAddedForTheSheetGetsNoTipBesideIt) {
     EXPECT_EQ(added, 0u);
     EXPECT_TRUE(points.points.empty());
     EXPECT_TRUE(sc.columns.empty());
+    // ...and are kept as places on the sheet no tip holds (said to the
+    // user): the points the last round put on what is left, each on the
+    // sheet (its lines 100..110 at y 99.2..100.8, 0.4 mm wide) and at the
+    // sheet's layer's height (layer 20 of 0.2 mm layers: z 4.2), not the
+    // point's own (its tip's, under the sheet).
+    const overhang::SupportPoints last = overhang::place_points(plan::unheld_by_tips(over, sc, st, obs, s), st, s);
+    ASSERT_FALSE(last.points.empty());
+    ASSERT_EQ(sc.uncovered.size(), last.points.size());
+    for (std::size_t i = 0; i < last.points.size(); ++i) {
+        const plan::Xyz& u = sc.uncovered[i];
+        EXPECT_EQ(u.x, last.points[i].x);
+        EXPECT_EQ(u.y, last.points[i].y);
+        EXPECT_NEAR(u.z, 4.2, 1e-9);
+        EXPECT_GE(u.x, 99.8);
+        EXPECT_LE(u.x, 110.2);
+        EXPECT_GE(u.y, 99.0);
+        EXPECT_LE(u.y, 101.0);
+    }
 }
