@@ -206,6 +206,61 @@ void merge_crossing_loops(std::vector<Path>& paths, const std::vector<std::pair<
     paths = std::move(kept);
 }
 
+// Whether a bead of `paths` comes within `reach` (centre line to centre
+// line) of the point, or of the ring's centre line.
+// (The first `count` paths.)
+bool meets(const std::vector<Path>& paths, std::size_t count, double x, double y, double rc, double reach) {
+    for (std::size_t j = 0; j < count; ++j) {
+        const Path& p = paths[j];
+        for (std::size_t i = 0; i < p.points.size(); ++i) {
+            const Point& b = p.points[i];
+            const Point& a = i > 0 ? p.points[i - 1] : b;
+            const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+            const double t = len2 > 0 ? std::clamp(((x - a.x) * dx + (y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+            const double near = std::hypot(a.x + dx * t - x, a.y + dy * t - y);
+            const double far = std::max(std::hypot(a.x - x, a.y - y), std::hypot(b.x - x, b.y - y));
+            if (near <= rc + reach && far >= rc - reach) return true;
+        }
+    }
+    return false;
+}
+
+// A column's first loop that lies over the hollow of a wider loop printed
+// around it on the same layer (a branch on a trunk widened after it was
+// placed) rests on nothing: METHOD's Standing rule finds it no way down, a
+// floating island. Four short bridged spokes out to the wider loop make
+// them one island, held by the wider column's loop below. Spokes whose
+// outer end meets no bead of the layer (that arc merged away) are left out.
+void spoke_inner_loops(std::vector<Path>& paths, const std::vector<Ring>& firsts, const std::vector<Ring>& rings,
+                       const std::vector<Path>* below, double w, double speed, double slack) {
+    for (const Ring& in : firsts) {
+        if (below && meets(*below, below->size(), in.x, in.y, in.rc, w + slack)) continue;
+        const Ring* out = nullptr;
+        for (const Ring& o : rings) {
+            const double d = std::hypot(in.x - o.x, in.y - o.y);
+            if (o.rc - d - in.rc - w > slack && (!out || o.rc < out->rc)) out = &o;
+        }
+        if (!out) continue;
+        const double vx = in.x - out->x, vy = in.y - out->y, d = std::hypot(vx, vy);
+        const double a0 = d > 1e-9 ? std::atan2(vy, vx) : 0.0;
+        const std::size_t before = paths.size();
+        for (int k = 0; k < 4; ++k) {
+            const double ux = std::cos(a0 + k * std::numbers::pi / 2), uy = std::sin(a0 + k * std::numbers::pi / 2);
+            const double uv = ux * vx + uy * vy;
+            const double t = -uv + std::sqrt(uv * uv - (d * d - out->rc * out->rc));
+            const Point p0{in.x + ux * in.rc, in.y + uy * in.rc}, p1{in.x + ux * t, in.y + uy * t};
+            if (!meets(paths, before, p1.x, p1.y, 0, w / 2 + slack)) continue;
+            Path s;
+            s.points = {p0, p1};
+            s.width = w;
+            s.speed_mm_s = speed;
+            s.kind = PathKind::Bridge;
+            s.bridge = true;
+            paths.push_back(std::move(s));
+        }
+    }
+}
+
 }  // namespace
 
 // Layers with this many paths (a plate's) are ordered with a grid of their starts.
@@ -505,6 +560,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
     std::stable_sort(by_base.begin(), by_base.end(),
                      [&](std::size_t a, std::size_t b) { return scaffold.columns[a].z0 < scaffold.columns[b].z0; });
     double printed_up_to = 0;  // the highest layer so far
+    struct Looped {
+        double z = -1, x = 0, y = 0, rc = 0;
+    };
+    std::vector<Looped> looped_at(scaffold.columns.size());  // each column's last loop
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
@@ -538,6 +597,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         std::vector<Square> rafts;
         std::vector<Ring> rings;
         std::vector<std::pair<std::size_t, Ring>> single_loops;  // path index, ring
+        std::vector<Ring> firsts;  // loops that may not rest on their column's loop below
         const double h_nom = std::max(s.layer_height, layer.nominal_height);
         std::vector<Bonded> bonded =
             stack.z_varies ? std::vector<Bonded>{}
@@ -594,6 +654,14 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                     continue;
             }
             rings.push_back({cx, cy, rc});
+            // Its first loop on support, the first after loops left out
+            // (another's loop held it), or one much narrower than its own
+            // below (a tip's neck begins): its own loop below may not hold it.
+            if (layer.below >= 0 && c.base != plan::Base::Model && c.base != plan::Base::Bed &&
+                (looped_at[ci].z < stack.layers[layer.below].z - kZEps ||
+                 std::hypot(cx - looped_at[ci].x, cy - looped_at[ci].y) + std::abs(rc - looped_at[ci].rc) > w / 2))
+                firsts.push_back(rings.back());
+            looped_at[ci] = {z, cx, cy, rc};
             const PathKind kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot
                                   : (c.x0 != c.x1 || c.y0 != c.y1)                                 ? PathKind::Connector
                                                                                                   : PathKind::Pillar;
@@ -604,6 +672,8 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         const int below = layer.below >= 0 ? printed_at[layer.below] : -1;
         merge_crossing_loops(lp.paths, single_loops, first_layer, below >= 0 ? &out.layers[below].paths : nullptr,
                              plan::loop_shift_limit(layer.height, s));
+        spoke_inner_loops(lp.paths, firsts, rings, below >= 0 ? &out.layers[below].paths : nullptr, w,
+                          s.bridge_speed_mm_s, s.resolution);
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;

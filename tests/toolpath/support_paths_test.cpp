@@ -389,6 +389,56 @@ TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
     EXPECT_NEAR(far, plan::loop_shape(1.3, s.support_width).centre_radius, 1e-9);
 }
 
+// A narrow column standing on a wide one (a branch on a trunk widened
+// after it was placed) starts with a loop over the trunk's hollow: its
+// first loop meets nothing on the layer below, so METHOD's Standing rule
+// finds it no way down (a floating island). Four bridged spokes out to the
+// trunk's loop make the two loops one island. By hand: the trunk's loop
+// (outer radius 1.6, 0.45 mm beads) has its centre line at 1.375, the
+// branch's (0.6) at 0.375; the beads' edges are 1.375 - 0.375 - 0.45 =
+// 0.55 mm apart, so each spoke runs 1.0 mm, from 0.375 to 1.375 off the
+// centre. On the next layer the branch's own loop holds it: no spokes.
+TEST(SupportPaths, ANarrowLoopOverAWideLoopsHollowIsSpokedToIt) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Column trunk = pillar(30, 30, 5), branch = pillar(30, 30, 4);
+    trunk.radius = 1.6;
+    branch.radius = 0.6;
+    branch.z0 = 2.0;  // layer 9's top: its first loop is on layer 10 (z 2.2)
+    branch.base = plan::Base::Column;
+    plan::Scaffold sc;
+    sc.columns = {trunk, branch};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const double rc_in = plan::loop_shape(0.6, s.support_width).centre_radius;
+    const double rc_out = plan::loop_shape(1.6, s.support_width).centre_radius;
+    ASSERT_NEAR(rc_in, 0.375, 1e-9);
+    ASSERT_NEAR(rc_out, 1.375, 1e-9);
+    auto spokes = [&](int layer) {
+        std::vector<const toolpath::Path*> out;
+        const auto* lp = at_layer(paths, layer);
+        if (lp)
+            for (const auto& p : lp->paths)
+                if (p.kind == toolpath::PathKind::Bridge) out.push_back(&p);
+        return out;
+    };
+    const auto first = spokes(10);
+    ASSERT_EQ(first.size(), 4u);
+    for (const toolpath::Path* p : first) {
+        ASSERT_EQ(p->points.size(), 2u);
+        EXPECT_TRUE(p->bridge);
+        EXPECT_NEAR(std::hypot(p->points[0].x - 30, p->points[0].y - 30), 0.375, 1e-9);
+        EXPECT_NEAR(std::hypot(p->points[1].x - 30, p->points[1].y - 30), 1.375, 1e-9);
+    }
+    EXPECT_TRUE(spokes(9).empty());
+    EXPECT_TRUE(spokes(11).empty());
+    // The branch on a trunk its loop overlaps (outer radius 0.8: centre line
+    // at 0.575, 0.2 mm off the branch's, within a bead) needs none.
+    sc.columns[0].radius = 0.8;
+    const auto overlapping = toolpath::make_paths(sc, st, s);
+    for (const auto& lp : overlapping.layers)
+        for (const auto& p : lp.paths) EXPECT_NE(p.kind, toolpath::PathKind::Bridge);
+}
+
 namespace {
 
 // What the pipeline prints for a plate of copies whose supports all stand
