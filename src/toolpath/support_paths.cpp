@@ -225,31 +225,42 @@ bool meets(const std::vector<Path>& paths, std::size_t count, double x, double y
     return false;
 }
 
-// A column's first loop that lies over the hollow of a wider loop printed
-// around it on the same layer (a branch on a trunk widened after it was
-// placed) rests on nothing: METHOD's Standing rule finds it no way down, a
-// floating island. Four short bridged spokes out to the wider loop make
-// them one island, held by the wider column's loop below. Spokes whose
-// outer end meets no bead of the layer (that arc merged away) are left out.
+// A column's loop that rests on nothing below, over the hollow of a wider
+// loop (a branch on a trunk widened after it was placed; a tip's neck
+// narrowing in one layer inside the piece it stands on), has no way down by
+// METHOD's Standing rule: a floating island. Four short bridged spokes out
+// to the wider loop (the nearest enclosing one on its own layer, else on
+// the layer below, where the spokes' ends rest on it) make one island with
+// a way down. Spokes whose outer end meets no bead (an arc merged away)
+// are left out.
 void spoke_inner_loops(std::vector<Path>& paths, const std::vector<Ring>& firsts, const std::vector<Ring>& rings,
-                       const std::vector<Path>* below, double w, double speed, double slack) {
-    for (const Ring& in : firsts) {
-        if (below && meets(*below, below->size(), in.x, in.y, in.rc, w + slack)) continue;
+                       const std::vector<Path>* below, const std::vector<Ring>& below_rings, double w, double speed,
+                       double slack) {
+    auto enclosing = [&](const Ring& in, const std::vector<Ring>& of) {
         const Ring* out = nullptr;
-        for (const Ring& o : rings) {
+        for (const Ring& o : of) {
             const double d = std::hypot(in.x - o.x, in.y - o.y);
             if (o.rc - d - in.rc - w > slack && (!out || o.rc < out->rc)) out = &o;
         }
+        return out;
+    };
+    const std::size_t own = paths.size();  // this layer's beads, spokes aside
+    for (const Ring& in : firsts) {
+        if (below && meets(*below, below->size(), in.x, in.y, in.rc, w + slack)) continue;
+        const Ring* out = enclosing(in, rings);
+        const bool on_own = out != nullptr;
+        if (!out && below) out = enclosing(in, below_rings);
         if (!out) continue;
         const double vx = in.x - out->x, vy = in.y - out->y, d = std::hypot(vx, vy);
         const double a0 = d > 1e-9 ? std::atan2(vy, vx) : 0.0;
-        const std::size_t before = paths.size();
         for (int k = 0; k < 4; ++k) {
             const double ux = std::cos(a0 + k * std::numbers::pi / 2), uy = std::sin(a0 + k * std::numbers::pi / 2);
             const double uv = ux * vx + uy * vy;
             const double t = -uv + std::sqrt(uv * uv - (d * d - out->rc * out->rc));
             const Point p0{in.x + ux * in.rc, in.y + uy * in.rc}, p1{in.x + ux * t, in.y + uy * t};
-            if (!meets(paths, before, p1.x, p1.y, 0, w / 2 + slack)) continue;
+            if (on_own ? !meets(paths, own, p1.x, p1.y, 0, w / 2 + slack)
+                       : !meets(*below, below->size(), p1.x, p1.y, 0, w / 2 + slack))
+                continue;
             Path s;
             s.points = {p0, p1};
             s.width = w;
@@ -564,6 +575,7 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         double z = -1, x = 0, y = 0, rc = 0;
     };
     std::vector<Looped> looped_at(scaffold.columns.size());  // each column's last loop
+    std::vector<std::vector<Ring>> rings_at(stack.layers.size());  // each layer's loops' rings
     for (int l = 0; l < static_cast<int>(stack.layers.size()); ++l) {
         const layers::Layer& layer = stack.layers[l];
         if (layer.purge) continue;
@@ -672,8 +684,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         const int below = layer.below >= 0 ? printed_at[layer.below] : -1;
         merge_crossing_loops(lp.paths, single_loops, first_layer, below >= 0 ? &out.layers[below].paths : nullptr,
                              plan::loop_shift_limit(layer.height, s));
-        spoke_inner_loops(lp.paths, firsts, rings, below >= 0 ? &out.layers[below].paths : nullptr, w,
-                          s.bridge_speed_mm_s, s.resolution);
+        static const std::vector<Ring> none;
+        spoke_inner_loops(lp.paths, firsts, rings, below >= 0 ? &out.layers[below].paths : nullptr,
+                          layer.below >= 0 ? rings_at[layer.below] : none, w, s.bridge_speed_mm_s, s.resolution);
+        rings_at[l] = rings;
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;

@@ -439,6 +439,39 @@ TEST(SupportPaths, ANarrowLoopOverAWideLoopsHollowIsSpokedToIt) {
         for (const auto& p : lp.paths) EXPECT_NE(p.kind, toolpath::PathKind::Bridge);
 }
 
+// A column that narrows in one layer (a wide piece ends, a narrow one
+// stands on it: a tip's neck) starts the narrow loop over the wide piece's
+// hollow with no loop around it on its own layer: its spokes reach out over
+// the wide loop of the layer below and rest on it. By hand as above: the
+// narrow loop's centre line at 0.375, the wide one's (below) at 1.375.
+TEST(SupportPaths, ALoopNarrowerInOneLayerIsSpokedOverTheLoopBelow) {
+    Settings s;
+    const layers::LayerStack st = test::empty_stack(6);
+    plan::Column wide = pillar(30, 30, 3.0), narrow = pillar(30, 30, 5);
+    wide.radius = 1.6;
+    wide.top = plan::Top::Column;  // no tip's neck: it ends at full width
+    narrow.radius = 0.6;
+    narrow.z0 = 3.0;  // layer 14's top: its first loop is on layer 15 (z 3.2)
+    narrow.base = plan::Base::Column;
+    plan::Scaffold sc;
+    sc.columns = {wide, narrow};
+    const auto paths = toolpath::make_paths(sc, st, s);
+    const auto* lp = at_layer(paths, 15);
+    ASSERT_NE(lp, nullptr);
+    int spokes = 0;
+    for (const auto& p : lp->paths) {
+        if (p.kind != toolpath::PathKind::Bridge) continue;
+        ++spokes;
+        ASSERT_EQ(p.points.size(), 2u);
+        EXPECT_NEAR(std::hypot(p.points[0].x - 30, p.points[0].y - 30), 0.375, 1e-9);
+        EXPECT_NEAR(std::hypot(p.points[1].x - 30, p.points[1].y - 30), 1.375, 1e-9);
+    }
+    EXPECT_EQ(spokes, 4);
+    for (const auto& other : paths.layers)
+        if (other.layer != 15)
+            for (const auto& p : other.paths) EXPECT_NE(p.kind, toolpath::PathKind::Bridge);
+}
+
 namespace {
 
 // What the pipeline prints for a plate of copies whose supports all stand
