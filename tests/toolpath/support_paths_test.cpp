@@ -389,6 +389,45 @@ TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
     EXPECT_NEAR(far, plan::loop_shape(1.3, s.support_width).centre_radius, 1e-9);
 }
 
+namespace {
+
+// A wide column (outer radius 1.6) up to `wide_top`, ending as `wide_end`,
+// and a narrow one (0.6) standing on it from `narrow_from` to z 4, both
+// at (30, 30), on 0.2 mm layers (layer l's top at 0.2 (l + 1)).
+plan::Scaffold narrow_on_wide(double wide_top, plan::Top wide_end, double narrow_from) {
+    plan::Column wide = pillar(30, 30, wide_top), narrow = pillar(30, 30, 4);
+    wide.radius = 1.6;
+    wide.top = wide_end;
+    narrow.radius = 0.6;
+    narrow.z0 = narrow_from;
+    narrow.base = plan::Base::Column;
+    plan::Scaffold sc;
+    sc.columns = {wide, narrow};
+    return sc;
+}
+
+// A layer's bridged paths (the spokes: no bars in these scenes).
+std::vector<const toolpath::Path*> bridges_at(const toolpath::SupportPaths& paths, int layer) {
+    std::vector<const toolpath::Path*> out;
+    if (const auto* lp = at_layer(paths, layer))
+        for (const auto& p : lp->paths)
+            if (p.kind == toolpath::PathKind::Bridge) out.push_back(&p);
+    return out;
+}
+
+// Each spoke runs from the narrow loop's centre line out to the wide one's.
+void expect_spokes(const std::vector<const toolpath::Path*>& spokes, double rc_in, double rc_out) {
+    EXPECT_EQ(spokes.size(), 4u);
+    for (const toolpath::Path* p : spokes) {
+        ASSERT_EQ(p->points.size(), 2u);
+        EXPECT_TRUE(p->bridge);
+        EXPECT_NEAR(std::hypot(p->points[0].x - 30, p->points[0].y - 30), rc_in, 1e-9);
+        EXPECT_NEAR(std::hypot(p->points[1].x - 30, p->points[1].y - 30), rc_out, 1e-9);
+    }
+}
+
+}  // namespace
+
 // A narrow column standing on a wide one (a branch on a trunk widened
 // after it was placed) starts with a loop over the trunk's hollow: its
 // first loop meets nothing on the layer below, so METHOD's Standing rule
@@ -401,42 +440,19 @@ TEST(SupportPaths, OfTwoLoopsNearlyOneTheWiderIsPrinted) {
 TEST(SupportPaths, ANarrowLoopOverAWideLoopsHollowIsSpokedToIt) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
-    plan::Column trunk = pillar(30, 30, 5), branch = pillar(30, 30, 4);
-    trunk.radius = 1.6;
-    branch.radius = 0.6;
-    branch.z0 = 2.0;  // layer 9's top: its first loop is on layer 10 (z 2.2)
-    branch.base = plan::Base::Column;
-    plan::Scaffold sc;
-    sc.columns = {trunk, branch};
+    // The branch from layer 9's top: its first loop on layer 10 (z 2.2).
+    plan::Scaffold sc = narrow_on_wide(5, plan::Top::Contact, 2.0);
     const auto paths = toolpath::make_paths(sc, st, s);
-    const double rc_in = plan::loop_shape(0.6, s.support_width).centre_radius;
-    const double rc_out = plan::loop_shape(1.6, s.support_width).centre_radius;
-    ASSERT_NEAR(rc_in, 0.375, 1e-9);
-    ASSERT_NEAR(rc_out, 1.375, 1e-9);
-    auto spokes = [&](int layer) {
-        std::vector<const toolpath::Path*> out;
-        const auto* lp = at_layer(paths, layer);
-        if (lp)
-            for (const auto& p : lp->paths)
-                if (p.kind == toolpath::PathKind::Bridge) out.push_back(&p);
-        return out;
-    };
-    const auto first = spokes(10);
-    ASSERT_EQ(first.size(), 4u);
-    for (const toolpath::Path* p : first) {
-        ASSERT_EQ(p->points.size(), 2u);
-        EXPECT_TRUE(p->bridge);
-        EXPECT_NEAR(std::hypot(p->points[0].x - 30, p->points[0].y - 30), 0.375, 1e-9);
-        EXPECT_NEAR(std::hypot(p->points[1].x - 30, p->points[1].y - 30), 1.375, 1e-9);
-    }
-    EXPECT_TRUE(spokes(9).empty());
-    EXPECT_TRUE(spokes(11).empty());
+    ASSERT_NEAR(plan::loop_shape(0.6, s.support_width).centre_radius, 0.375, 1e-9);
+    ASSERT_NEAR(plan::loop_shape(1.6, s.support_width).centre_radius, 1.375, 1e-9);
+    expect_spokes(bridges_at(paths, 10), 0.375, 1.375);
+    EXPECT_TRUE(bridges_at(paths, 9).empty());
+    EXPECT_TRUE(bridges_at(paths, 11).empty());
     // The branch on a trunk its loop overlaps (outer radius 0.8: centre line
     // at 0.575, 0.2 mm off the branch's, within a bead) needs none.
     sc.columns[0].radius = 0.8;
     const auto overlapping = toolpath::make_paths(sc, st, s);
-    for (const auto& lp : overlapping.layers)
-        for (const auto& p : lp.paths) EXPECT_NE(p.kind, toolpath::PathKind::Bridge);
+    for (const auto& lp : overlapping.layers) EXPECT_TRUE(bridges_at(overlapping, lp.layer).empty());
 }
 
 // A column that narrows in one layer (a wide piece ends, a narrow one
@@ -447,29 +463,12 @@ TEST(SupportPaths, ANarrowLoopOverAWideLoopsHollowIsSpokedToIt) {
 TEST(SupportPaths, ALoopNarrowerInOneLayerIsSpokedOverTheLoopBelow) {
     Settings s;
     const layers::LayerStack st = test::empty_stack(6);
-    plan::Column wide = pillar(30, 30, 3.0), narrow = pillar(30, 30, 5);
-    wide.radius = 1.6;
-    wide.top = plan::Top::Column;  // no tip's neck: it ends at full width
-    narrow.radius = 0.6;
-    narrow.z0 = 3.0;  // layer 14's top: its first loop is on layer 15 (z 3.2)
-    narrow.base = plan::Base::Column;
-    plan::Scaffold sc;
-    sc.columns = {wide, narrow};
-    const auto paths = toolpath::make_paths(sc, st, s);
-    const auto* lp = at_layer(paths, 15);
-    ASSERT_NE(lp, nullptr);
-    int spokes = 0;
-    for (const auto& p : lp->paths) {
-        if (p.kind != toolpath::PathKind::Bridge) continue;
-        ++spokes;
-        ASSERT_EQ(p.points.size(), 2u);
-        EXPECT_NEAR(std::hypot(p.points[0].x - 30, p.points[0].y - 30), 0.375, 1e-9);
-        EXPECT_NEAR(std::hypot(p.points[1].x - 30, p.points[1].y - 30), 1.375, 1e-9);
-    }
-    EXPECT_EQ(spokes, 4);
-    for (const auto& other : paths.layers)
-        if (other.layer != 15)
-            for (const auto& p : other.paths) EXPECT_NE(p.kind, toolpath::PathKind::Bridge);
+    // The wide piece ends at full width (no tip's neck) at layer 14's top;
+    // the narrow one's first loop is on layer 15 (z 3.2).
+    const auto paths = toolpath::make_paths(narrow_on_wide(3.0, plan::Top::Column, 3.0), st, s);
+    expect_spokes(bridges_at(paths, 15), 0.375, 1.375);
+    for (const auto& lp : paths.layers)
+        if (lp.layer != 15) EXPECT_TRUE(bridges_at(paths, lp.layer).empty());
 }
 
 namespace {
