@@ -436,18 +436,14 @@ Outcome run(const Request& req, spdlog::logger& log) {
                              p.layer);
         }
         j += "],\n";
-        j += "  \"unheld_bridge_ends\": [";
-        for (std::size_t i = 0; i < scaffold.unheld_bridge_ends.size(); ++i) {
-            const plan::Xyz& e = scaffold.unheld_bridge_ends[i];
-            j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", e.x, e.y, e.z);
-        }
-        j += "],\n";
-        j += "  \"uncovered\": [";
-        for (std::size_t i = 0; i < scaffold.uncovered.size(); ++i) {
-            const plan::Xyz& e = scaffold.uncovered[i];
-            j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", e.x, e.y, e.z);
-        }
-        j += "],\n";
+        auto places = [&](const char* name, const std::vector<plan::Xyz>& at) {
+            j += fmt::format("  \"{}\": [", name);
+            for (std::size_t i = 0; i < at.size(); ++i)
+                j += fmt::format("{}{{\"x\": {:.3f}, \"y\": {:.3f}, \"z\": {:.3f}}}", i ? ", " : "", at[i].x, at[i].y, at[i].z);
+            j += "],\n";
+        };
+        places("unheld_bridge_ends", scaffold.unheld_bridge_ends);
+        places("uncovered", scaffold.uncovered);
         j += "  \"support_filament_mm\": " + fixed(spliced.filament_mm, 2) + ",\n";
         j += "  \"model_filament_mm\": " + fixed(model_mm, 2) + ",\n";
         j += "  \"layers_touched\": " + std::to_string(spliced.layers_touched) + ",\n";

@@ -215,9 +215,7 @@ bool meets(const std::vector<Path>& paths, std::size_t count, double x, double y
         for (std::size_t i = 0; i < p.points.size(); ++i) {
             const Point& b = p.points[i];
             const Point& a = i > 0 ? p.points[i - 1] : b;
-            const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
-            const double t = len2 > 0 ? std::clamp(((x - a.x) * dx + (y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
-            const double near = std::hypot(a.x + dx * t - x, a.y + dy * t - y);
+            const double near = layers::segment_distance(x, y, a.x, a.y, b.x, b.y);
             const double far = std::max(std::hypot(a.x - x, a.y - y), std::hypot(b.x - x, b.y - y));
             if (near <= rc + reach && far >= rc - reach) return true;
         }
@@ -234,7 +232,7 @@ bool meets(const std::vector<Path>& paths, std::size_t count, double x, double y
 // a way down. Spokes whose outer end meets no bead (an arc merged away)
 // are left out.
 void spoke_inner_loops(std::vector<Path>& paths, const std::vector<Ring>& firsts, const std::vector<Ring>& rings,
-                       const std::vector<Path>* below, const std::vector<Ring>& below_rings, double w, double speed,
+                       const std::vector<Path>* below, const std::vector<Ring>* below_rings, double w, double speed,
                        double slack) {
     auto enclosing = [&](const Ring& in, const std::vector<Ring>& of) {
         const Ring* out = nullptr;
@@ -249,7 +247,7 @@ void spoke_inner_loops(std::vector<Path>& paths, const std::vector<Ring>& firsts
         if (below && meets(*below, below->size(), in.x, in.y, in.rc, w + slack)) continue;
         const Ring* out = enclosing(in, rings);
         const bool on_own = out != nullptr;
-        if (!out && below) out = enclosing(in, below_rings);
+        if (!out && below && below_rings) out = enclosing(in, *below_rings);
         if (!out) continue;
         const double vx = in.x - out->x, vy = in.y - out->y, d = std::hypot(vx, vy);
         const double a0 = d > 1e-9 ? std::atan2(vy, vx) : 0.0;
@@ -684,10 +682,9 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
         const int below = layer.below >= 0 ? printed_at[layer.below] : -1;
         merge_crossing_loops(lp.paths, single_loops, first_layer, below >= 0 ? &out.layers[below].paths : nullptr,
                              plan::loop_shift_limit(layer.height, s));
-        static const std::vector<Ring> none;
         spoke_inner_loops(lp.paths, firsts, rings, below >= 0 ? &out.layers[below].paths : nullptr,
-                          layer.below >= 0 ? rings_at[layer.below] : none, w, s.bridge_speed_mm_s, s.resolution);
-        rings_at[l] = rings;
+                          layer.below >= 0 ? &rings_at[layer.below] : nullptr, w, s.bridge_speed_mm_s, s.resolution);
+        rings_at[l] = std::move(rings);  // not asked again on this layer
         for (const plan::Bridge& br : scaffold.bridges) {
             // Two layers of two side-by-side lines: a 1 mm wide, 0.4 mm thick bar.
             if (z <= br.z + kZEps || z > br.z + kBridgeThickness + kZEps) continue;
