@@ -205,7 +205,7 @@ bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_coun
 double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
                       const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
                       int chain_count, const Scaffold& sc, const layers::LayerStack& stack, const Settings& s,
-                      const std::array<const std::vector<double>*, 3>& earlier) {
+                      const std::array<const std::vector<double>*, 3>& earlier, double* weakest_corner) {
     // A path down: a node's give, then pieces of pillars, each between two heights.
     struct Piece {
         const PillarChain* chain;
@@ -222,6 +222,7 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
     };
     std::array<Down, 3> down;
     for (int i = 0; i < 3; ++i) down[i].pieces.push_back({cols[i], -1e300, 1e300});
+    if (weakest_corner) *weakest_corner = std::numeric_limits<double>::infinity();
     double lo = -1e300;
     // A tie that is no node (a twig among them) joins the three into one
     // island there: above it they are columns that meet lower down, one
@@ -238,6 +239,7 @@ double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::
                 for (double e : *earlier[i])
                     if (e < b - kEps) k_most = std::max(k_most, 1 / chain_compliance(*cols[i], b, sc, stack, s, e, b));
         }
+        if (weakest_corner) *weakest_corner = std::min(*weakest_corner, *std::min_element(k.begin(), k.end()));
         const int best = static_cast<int>(std::max_element(k.begin(), k.end()) - k.begin());
         const bool node = !joined && distinct_columns(meetings, chain_count, {ids[0], ids[1], ids[2]}, lo, b) &&
                           std::all_of(k.begin(), k.end(), [&](double ki) { return ki >= kBraceColumnShare * k_most; });
@@ -420,12 +422,17 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         return &ties_of[id];
     };
     // W's stiffness at its top, tied with P and Q (indices into chains, or
-    // helpers past them) at these levels, meets the rule.
+    // helpers past them) at these levels, meets the rule, and so does each
+    // corner's island under each tie (a helper's top, standing on its part
+    // from the tie below: shelf at --min-stiffness 10, 6.7 N/mm there).
     auto nodes_stand = [&](const PillarChain& W, const PillarChain& P, const PillarChain& Q,
                            const std::vector<double>& levels, double give, const std::array<int, 3>& ids) {
+        double corner = 0;
         return tied_stiffness({&W, &P, &Q}, ids, levels, give, meets, n, sc, stack, s,
                               {earlier_ties(W, ids[0], true), earlier_ties(P, ids[1], false),
-                               earlier_ties(Q, ids[2], false)}) >= s.min_stiffness;
+                               earlier_ties(Q, ids[2], false)},
+                              &corner) >= s.min_stiffness &&
+               corner >= s.min_stiffness;
     };
     // The triangle W, P, Q tied at every level: its bars, or none if one
     // fails or its nodes would not stand.
@@ -583,16 +590,25 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
             const double b = snap_down(want);
             if (b > W.base + 1 && !bar_layers(b).empty() && (ties.empty() || b > ties.back() + kEps)) ties.push_back(b);
         };
-        // Whether W, from a tie at `from` (its base: -inf), stands by itself
-        // up to z.
-        auto alone = [&](double from, double z) {
-            return 1 / chain_compliance(W, z, sc, stack, s, from) >= kGiveMargin * s.min_stiffness;
+        // Whether W, from a tie at `from` (its base: -inf) whose node gives
+        // `node` mm/N, stands by itself up to z.
+        auto alone = [&](double from, double node, double z) {
+            return 1 / (node + chain_compliance(W, z, sc, stack, s, from)) >= kGiveMargin * s.min_stiffness;
         };
         // The highest z up to `to` W stands by itself to from `from`.
-        auto stands_to = [&](double from, double to) {
+        auto stands_to = [&](double from, double node, double to) {
             double lo = from, hi = to;
-            for (int i = 0; i < 10; ++i) (alone(from, (lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
+            for (int i = 0; i < 10; ++i) (alone(from, node, (lo + hi) / 2) ? lo : hi) = (lo + hi) / 2;
             return lo;
+        };
+        // The give of the node at a tie b over one at `from` (giving
+        // `node`): METHOD sums its three columns' k there, each taken as W's
+        // (partners and helpers are shaped as W), so it gives a third of
+        // W's compliance at b. What stands on the node starts on that give
+        // (a plain 2 mm column tied where it stops standing, 14.6 mm, and
+        // again 14.6 mm higher stood 1.65 N/mm there against 2.2 alone).
+        auto node_give = [&](double from, double node, double b) {
+            return (node + chain_compliance(W, b, sc, stack, s, from)) / 3;
         };
         // Tie levels, the fewest first: a tie only where W stops standing by
         // itself (the node there stands at least as W does: METHOD sums its
@@ -606,19 +622,21 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // holds it (as its walk down does).
         double start = W.base;
         for (double e : ties_of[wi]) start = std::max(start, e);
-        for (double from = start; !alone(from, W.top);) {
-            const double want = std::min(stands_to(from, W.top), W.top - 3.0);
+        for (double from = start, node = 0; !alone(from, node, W.top);) {
+            const double want = std::min(stands_to(from, node, W.top), W.top - 3.0);
             const std::size_t before = fewest.size();
             if (want > from + 1) add_tie(fewest, want);
             if (fewest.size() == before) break;
+            node = node_give(from, node, fewest.back());
             from = fewest.back();
         }
-        for (double from = start, next = start + kBraceStep;;) {
-            const double want = alone(from, next) ? next : stands_to(from, next);
+        for (double from = start, node = 0, next = start + kBraceStep;;) {
+            const double want = alone(from, node, next) ? next : stands_to(from, node, next);
             if (want <= from + 1 || want > W.top - 3.0) break;
             const std::size_t before = grid.size();
             add_tie(grid, want);
             if (grid.size() == before) break;
+            node = node_give(from, node, grid.back());
             from = grid.back();
             next = want == next ? next + kBraceStep : from + kBraceStep;
         }
@@ -628,17 +646,22 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
         // The fewest ties are made only with neighbours standing already (a
         // helper that tall costs more than the bars it saves: measured on
         // the corpus, 106 mm more on one bear and a figure failing).
-        // Whether what stands above a tie at b (W's part from there, with
-        // what stands on it) meets the rule afresh there.
-        auto stands_above = [&](double b) {
-            return 1 / (chain_compliance(W, W.hold, sc, stack, s, b) + give) >= kGiveMargin * s.min_stiffness;
+        // Whether what stands above the top of `ties` (W's part from there,
+        // on that node's give, with what stands on it) meets the rule.
+        auto stands_above = [&](const std::vector<double>& ties) {
+            double node = 0, from = start;
+            for (double b : ties) {
+                node = node_give(from, node, b);
+                from = b;
+            }
+            return 1 / (node + chain_compliance(W, W.hold, sc, stack, s, from) + give) >= kGiveMargin * s.min_stiffness;
         };
         std::vector<std::vector<double>> tries;
         std::vector<char> helped;  // whether helpers may stand up for tries[i]
         for (std::vector<double>* ties : {&fewest, &grid}) {
             if (ties->empty()) continue;
             std::vector<double> higher = *ties;
-            if (!stands_above(ties->back())) add_tie(higher, W.top - 3.0);
+            if (!stands_above(*ties)) add_tie(higher, W.top - 3.0);
             for (const std::vector<double>* t : {&higher, ties}) {
                 auto it = std::find(tries.begin(), tries.end(), *t);
                 if (it == tries.end()) {
@@ -786,7 +809,7 @@ int add_braces(Scaffold& sc, const layers::LayerStack& stack, const Obstacles& o
                     std::vector<double> lower(tries[t].begin(), tries[t].end() - 1);
                     const std::size_t before = lower.size();
                     add_tie(lower, tries[t].back() - k * kLowerTie);
-                    if (lower.size() == before || !stands_above(lower.back()) ||
+                    if (lower.size() == before || !stands_above(lower) ||
                         std::find(tries.begin(), tries.end(), lower) != tries.end())
                         continue;
                     tries.push_back(lower);

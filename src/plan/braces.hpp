@@ -92,11 +92,15 @@ bool distinct_columns(const std::vector<ColumnMeeting>& meetings, int chain_coun
 // other triangles; the validator may walk it down through a node there, so
 // in the share test its k at a tie is taken as high as that could make it
 // (the part from that height up, on a node that does not give), the others'
-// as low as their own ways down make them.
+// as low as their own ways down make them. `weakest_corner` (if given):
+// the least k of the three at a tie, each on the layer under the bars, as
+// the validator judges that layer's island of each (a helper's top there
+// stands on its part from the tie below alone).
 double tied_stiffness(const std::array<const PillarChain*, 3>& cols, const std::array<int, 3>& ids,
                       const std::vector<double>& levels, double give, const std::vector<ColumnMeeting>& meetings,
                       int chain_count, const Scaffold& scaffold, const layers::LayerStack& stack,
-                      const Settings& settings, const std::array<const std::vector<double>*, 3>& earlier = {});
+                      const Settings& settings, const std::array<const std::vector<double>*, 3>& earlier = {},
+                      double* weakest_corner = nullptr);
 
 // Ties each pillar weaker than target_stiffness at the top of what it holds
 // to two neighbours (triangles whose angles are all 30 degrees or more), at

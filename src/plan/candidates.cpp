@@ -213,9 +213,14 @@ BridgeSearch::Key BridgeSearch::key_of(double x0, double y0, double x1, double y
     return {r(x0), r(y0), r(x1), r(y1), r(z)};
 }
 
-double connector_compliance(const Active& a, double bar_z, const Settings& s) {
-    return ring_compliance(kConnectorRadius, 0, std::max(a.z, a.hold), bar_z + kBarThickness, a.z, s.support_width,
-                           s.modulus);
+double connector_compliance(const Active& a, double bar_z, double bar_length, const Settings& s) {
+    const double top = std::max(a.z, a.hold);
+    const double stick = ring_compliance(kConnectorRadius, 0, top, bar_z + kBarThickness, a.z, s.support_width, s.modulus);
+    // The bar's own layers under it, bent about the bar's long axis.
+    const double h_hi = top - bar_z, h_lo = top - bar_z - kBarThickness;
+    const double bar = (h_hi * h_hi * h_hi - h_lo * h_lo * h_lo) /
+                       (3 * s.modulus * bar_inertia(bar_length, s.support_width, s.pillar_radius));
+    return stick + bar;
 }
 
 double connector_allowance(const Settings& s) {
@@ -226,7 +231,11 @@ double connector_allowance(const Settings& s) {
 double lowest_carrying_bar(const Active& a, const Settings& s) {
     if (!(connector_allowance(s) > 0)) return 0;
     const double allowed = connector_allowance(s) - a.give;
-    auto fits = [&](double z) { return z + kBarThickness >= a.z || connector_compliance(a, z, s) <= allowed; };
+    // The longest bar is the stiffest: a bar is offered by this bound and
+    // judged with its own length when its connectors are placed.
+    auto fits = [&](double z) {
+        return z + kBarThickness >= a.z || connector_compliance(a, z, s.bridge_max_length, s) <= allowed;
+    };
     if (fits(0)) return 0;
     // The connector gives less the shorter it is: the least z that fits.
     double lo = 0, hi = a.z;

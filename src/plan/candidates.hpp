@@ -91,15 +91,16 @@ struct Active {
 
 // METHOD's Standing rule as the planner holds a connector to it: a
 // kConnectorRadius stick from the top of a bar at bar_z up to a.z (however
-// it leans) gives this much (mm/N) at the top of what stands on a (a.hold,
-// or a.z); with what stands on a (a.give) it may give at most
+// it leans), over the bar's own two layers (bar_inertia for its length),
+// gives this much (mm/N) at the top of what stands on a (a.hold, or a.z);
+// with what stands on a (a.give) it may give at most
 // connector_allowance, half of what the whole may (the pillar under the
 // bar takes the rest). Only for a.z above the bar's top. The rule off: 0.
-double connector_compliance(const Active& a, double bar_z, const Settings& settings);
+double connector_compliance(const Active& a, double bar_z, double bar_length, const Settings& settings);
 double connector_allowance(const Settings& settings);
 
 // The lowest bar that may carry a (0: any): the lowest whose connector to a
-// stays within connector_allowance. A bar lower down is no bar for a: its
+// stays within connector_allowance, on the longest bar allowed. A bar lower down is no bar for a: its
 // connector would be turned down when the bar is offered (a plate's bunny
 // copy: 3056 bars offered and turned down so, each a search again).
 double lowest_carrying_bar(const Active& a, const Settings& settings);

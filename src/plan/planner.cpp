@@ -201,7 +201,7 @@ BridgePlan plan_bridges(const std::vector<Active>& start, const ModelView& m, co
             double give_i = 0;
             bool stiff = true;
             if (connector_allowance(s) > 0 && a.z > c->z + kBarThickness) {
-                give_i = a.give + connector_compliance(a, c->z, s);
+                give_i = a.give + connector_compliance(a, c->z, len, s);
                 stiff = give_i <= connector_allowance(s);
             }
             std::optional<Column> col;

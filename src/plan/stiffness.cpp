@@ -23,6 +23,11 @@ double ring_inertia(double r, double width) {
     return std::numbers::pi * rc * rc * rc * width;
 }
 
+double bar_inertia(double length, double width, double pillar_radius) {
+    const double across = 2 * width;
+    return (length + pillar_radius) * across * across * across / 12;
+}
+
 double ring_compliance(double r, double taper, double top, double lo, double hi, double width, double modulus) {
     if (!(hi > lo)) return 0;
     const double ew = modulus * std::numbers::pi * width;  // E I = ew rc^3

@@ -15,6 +15,13 @@ namespace scaffold::plan {
 // (the centre-line radius as the toolpaths print it: loop_shape's).
 double ring_inertia(double r, double width);
 
+// Second moment of area, mm^4, of a bridge bar's layer bent about its long
+// axis (its weaker one): two lines side by side, 2 w wide, as long as the
+// bar and its reach into the pillars at both ends (pillar_radius / 2 each,
+// bar_lines'). The validator's island there is at least this stiff: loops
+// merged into it only add to it.
+double bar_inertia(double length, double width, double pillar_radius);
+
 // Compliance, mm/N, at lever height `top` above the part of a ring column
 // between heights `lo` and `hi` (lo < hi <= top) whose outer radius is
 // r + taper * (top - z) at height z: the integral of (top - z)^2 / (E I(z)).

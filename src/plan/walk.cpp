@@ -6,6 +6,7 @@
 
 #include "plan/candidates.hpp"
 #include "plan/pillars.hpp"
+#include "plan/stiffness.hpp"
 
 namespace scaffold::plan {
 
@@ -36,6 +37,7 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
         }
     }
     const int n = static_cast<int>(chains_.size());
+    seat_.resize(chains_.size());
     events_.resize(chains_.size());
     auto event_at = [&](int c, double z) -> Event& {
         std::vector<Event>& ev = events_[static_cast<std::size_t>(c)];
@@ -64,6 +66,12 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
                 const layers::Segment seg{static_cast<float>(br.x0), static_cast<float>(br.y0), static_cast<float>(br.x1),
                                           static_cast<float>(br.y1)};
                 if (layers::segment_distance(foot.x0, foot.y0, seg) > r + w) continue;
+                // The bar's layers are the pillar's way down to the bar's
+                // ends (of several bars there, the weakest).
+                const double inertia =
+                    bar_inertia(std::hypot(br.x1 - br.x0, br.y1 - br.y0), w, settings.pillar_radius);
+                Seat& seat = seat_[static_cast<std::size_t>(h)];
+                if (seat.inertia == 0 || inertia < seat.inertia) seat = {br.z, foot.z0, inertia};
                 for (const ColumnMeeting& m : meetings)
                     if (m.bar == static_cast<int>(bi)) {
                         if (m.a != h) meet({br.z, h, m.a, m.bar});
@@ -121,8 +129,10 @@ WalkSums PlanWalk::own(int c, double lo, double hi) const {
     for (const layers::Layer& layer : stack_.layers) {
         if (layer.purge || layer.z > hi + kEps || layer.z <= lo + kEps) continue;
         const Column* piece = chain_piece_at(chain, sc_, layer.z);
-        if (!piece) continue;
-        const double f = layer.height / (s_.modulus * column_inertia_at(*piece, layer.z, s_));
+        const Seat& seat = seat_[static_cast<std::size_t>(c)];
+        const bool on_bar = !piece && seat.inertia > 0 && layer.z > seat.lo + kEps && layer.z <= seat.hi + kEps;
+        if (!piece && !on_bar) continue;
+        const double f = layer.height / (s_.modulus * (piece ? column_inertia_at(*piece, layer.z, s_) : seat.inertia));
         const double zm = layer.z - layer.height / 2;
         out.s0 += f;
         out.s1 += zm * f;

@@ -82,6 +82,12 @@ private:
 
     std::vector<PillarChain> chains_;  // the caller's, then the pillars on bars or columns
     std::vector<char> hung_;            // per pillar: standing on a bar or a column, nothing of its own below
+    // Per pillar hung on a bar: the bar's layers under its first piece,
+    // (lo, hi], and the bar's own section there (the validator's island).
+    struct Seat {
+        double lo = 0, hi = 0, inertia = 0;
+    };
+    std::vector<Seat> seat_;
     const std::vector<BraceNode>& nodes_;
     const Scaffold& sc_;
     const layers::LayerStack& stack_;

@@ -160,8 +160,10 @@ void gather_support(int l, const std::vector<LayerPaths>& printed, const layers:
                     const Settings& settings, std::vector<Bead>& beads) {
     const layers::Layer& layer = stack.layers[l];
     for (const LayerPaths& under : printed) {
+        // The validator's tolerance (layers::kZEps): heights read as floats
+        // put a layer exactly three below at 0.6000023 (38.2 over 37.6).
         const double dz = layer.z - printed_z(under, stack);
-        if (dz <= kZEps || dz > 3 * settings.layer_height + kZEps) continue;
+        if (dz <= layers::kZEps || dz > 3 * settings.layer_height + layers::kZEps) continue;
         for (const Path& path : under.paths)
             for (std::size_t i = 1; i < path.points.size(); ++i)
                 beads.push_back({written(path.points[i - 1].x), written(path.points[i - 1].y), written(path.points[i].x),

@@ -17,6 +17,7 @@
 #include <boost/geometry.hpp>
 #pragma GCC diagnostic pop
 
+#include "plan/braces.hpp"
 #include "plan/pillars.hpp"
 #include "toolpath/bar_check.hpp"
 
@@ -651,25 +652,54 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
             // centre line within the reach of the printed bead): pillars
             // standing closer than their diameter then print one loop, not
             // two crossing ones. Never a column's top two layers (its tip).
-            if (next[l] >= 0 && c.z1 > stack.layers[next[l]].z + kZEps) {
-                const double z2 = stack.layers[next[l]].z;
-                double cx2, cy2;
-                plan::column_centre_at(c, z2, cx2, cy2);
-                const double rc2 = plan::loop_shape(plan::column_radius_at(c, z2, s), w).centre_radius;
-                const double hold = plan::loop_shift_limit(stack.layers[next[l]].height, s);
-                if (c.z1 > z2 + stack.layers[next[l]].height + kZEps &&
+            if (next[l] >= 0) {
+                const double z2 = stack.layers[next[l]].z, h2 = stack.layers[next[l]].height;
+                // The column's next loop: on this piece, or on the piece
+                // stacked on it where this one ends here.
+                const plan::Column* up = c.z1 > z2 + kZEps ? &c : nullptr;
+                if (!up && c.top == plan::Top::Column && ci + 1 < scaffold.columns.size() &&
+                    plan::stacked_on_previous(scaffold, static_cast<int>(ci + 1)) &&
+                    scaffold.columns[ci + 1].z1 > z2 + kZEps)
+                    up = &scaffold.columns[ci + 1];
+                double cx2 = 0, cy2 = 0, rc2 = 0;
+                if (up) {
+                    plan::column_centre_at(*up, z2, cx2, cy2);
+                    rc2 = plan::loop_shape(plan::column_radius_at(*up, z2, s), w).centre_radius;
+                }
+                const double hold = plan::loop_shift_limit(h2, s);
+                if (up == &c && c.z1 > z2 + h2 + kZEps &&
                     std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
                         return apart(o, cx, cy, rc) <= hold && apart(o, cx2, cy2, rc2) <= hold;
                     }))
                     continue;
+                // Or wholly inside a wider loop, beads apart, on this layer
+                // and the next: a narrower column on a wider one's way down
+                // (a bar end's pillar following a trunk) would stand there
+                // as an island of its own with its own thin way down (bull
+                // at --min-stiffness 10: 5.0 N/mm inside a 2 mm trunk). The
+                // wider one carries it; where it leaves, its first loop is
+                // spoked to it (spoke_inner_loops). Not in its tip.
+                auto inside = [&](const Ring& o, double x, double y, double rc_) {
+                    return std::hypot(x - o.x, y - o.y) + rc_ + w <= o.rc;
+                };
+                if (up && (up->top == plan::Top::Column || up->z1 > z2 + h2 + kZEps) &&
+                    std::any_of(rings.begin(), rings.end(),
+                                [&](const Ring& o) { return inside(o, cx, cy, rc) && inside(o, cx2, cy2, rc2); }))
+                    continue;
             }
             rings.push_back({cx, cy, rc});
             // Its first loop on support, the first after loops left out
-            // (another's loop held it), or one much narrower than its own
-            // below (a tip's neck begins): its own loop below may not hold it.
-            if (layer.below >= 0 && c.base != plan::Base::Model && c.base != plan::Base::Bed &&
-                (looped_at[ci].z < stack.layers[layer.below].z - kZEps ||
-                 std::hypot(cx - looped_at[ci].x, cy - looped_at[ci].y) + std::abs(rc - looped_at[ci].rc) > w / 2))
+            // (another's loop held it: on a column from the bed or the
+            // model too, left out from its start), or one much narrower than
+            // its own below (a tip's neck begins): its own loop below may not
+            // hold it.
+            const double z_below = layer.below >= 0 ? stack.layers[layer.below].z : -1.0;
+            const bool left_out = z_below > c.z0 + kZEps && looped_at[ci].z < z_below - kZEps;
+            const bool on_support = c.base != plan::Base::Model && c.base != plan::Base::Bed;
+            if (layer.below >= 0 &&
+                (left_out || (looped_at[ci].z < 0 && on_support) ||
+                 (looped_at[ci].z >= 0 && std::hypot(cx - looped_at[ci].x, cy - looped_at[ci].y) +
+                                                  std::abs(rc - looped_at[ci].rc) > w / 2)))
                 firsts.push_back(rings.back());
             looped_at[ci] = {z, cx, cy, rc};
             const PathKind kind = (c.base == plan::Base::Bed && c.foot_radius > 0 && z < s.foot_height) ? PathKind::Foot

@@ -80,12 +80,18 @@ struct BraceScene : ::testing::Test {
 // 40^3 / (3 x 2303.22) = 9.26 mm/N (0.108 N/mm), far under 2.5. A plain
 // 2 mm ring stands 2.2 N/mm (the rule with the planner's tenth) up to h
 // where (h^3 / 3 - 5 h x 0.2^3 / 12) / 2303.22 = 1 / 2.2, h = 14.64 mm:
-// each is tied to the other two at 14.6 (the layer below), then 14.64
-// higher, at 29.2; the 10.8 mm above stand 3 x 2303.22 / 10.8^3 = 5.5
-// N/mm. Three bars a level, each from loop to loop (centre lines 0.775 mm
-// from the centres), so 10 - 2 x 0.775 = 8.45 mm long: 6 bars, no helper
-// column, fewer than the 9 of ties every 10 mm; the other two are braced
-// by the same triangle.
+// each is tied to the other two at 14.6 (the layer below), where it gives
+// 0.450383 mm/N (2.2203 N/mm). The node there sums three such: it gives a
+// third, 0.150128 mm/N, and what stands on it starts on that give: the
+// next tie where 1 / (0.150128 + C(h)) = 2.2, C(h) = 0.304418, h = 12.80,
+// at 27.40 (the bisection's 27.399), the layer below: 27.2. Each column's
+// island just under it stands 1 / (0.150128 + 0.289486) = 2.2747 N/mm
+// (tied 14.6 mm higher, at 29.2, it would stand 1 / (0.150128 + 0.450383)
+// = 1.665, under 2); the 12.8 mm above, on that node's give (a third of
+// 0.439614), 1 / (0.146538 + 0.303492) = 2.222 N/mm. Three bars a level,
+// each from loop to loop (centre lines 0.775 mm from the centres), so 10 -
+// 2 x 0.775 = 8.45 mm long: 6 bars, no helper column, fewer than the 9 of
+// ties every 10 mm; the other two are braced by the same triangle.
 TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedWhereTheyStopStanding) {
     sc.columns.push_back(plain(30, 30, 40));
     sc.columns.push_back(plain(40, 30, 40));
@@ -96,7 +102,7 @@ TEST_F(BraceScene, ATriangleOfWeakColumnsIsTiedWhereTheyStopStanding) {
     EXPECT_EQ(sc.columns.size(), 3u);
     for (const plan::Bridge& b : sc.bridges) {
         EXPECT_NEAR(std::hypot(b.x1 - b.x0, b.y1 - b.y0), 8.45, 1e-6);
-        EXPECT_TRUE(std::abs(b.z - 14.6) < 1e-6 || std::abs(b.z - 29.2) < 1e-6) << b.z;
+        EXPECT_TRUE(std::abs(b.z - 14.6) < 1e-6 || std::abs(b.z - 27.2) < 1e-6) << b.z;
     }
     // A forbidden bar (one the bar check failed) is not placed again: the
     // same triangle is tied every 10 mm instead, at 10, 20 and 30 (its top
@@ -274,16 +280,20 @@ TEST_F(BraceScene, AColumnThatLeavesItsConnectorsTooLittleIsBraced) {
     EXPECT_EQ(plan::add_braces(light, st, obs, s, {}), 0);
 }
 
-// Each part between two ties stands by itself, and what stands above the
-// top tie starts afresh there. A thin 22 mm column (outer radius 0.6 mm:
-// centre line 0.375, I = pi 0.375^3 0.45 = 0.074551 mm^4, E I = 260.93)
-// stands 2.2 N/mm up to 7.0 mm: (7^3 / 3 - 35 x 0.2^3 / 12) / 260.93 =
-// 0.43809 mm/N, 2.283 N/mm (at 7.2: 2.098). Tied every 10 mm, its lowest
-// 10 mm would stand 0.78 N/mm. So it is tied at 7.0 and 14.0; the 8 mm
-// above 14 would stand (8^3 / 3 - 40 x 0.2^3 / 12) / 260.93 = 0.65397
-// mm/N, 1.53 N/mm (above a tie at 10, the 12 mm would give (12^3 / 3 - 60 x
-// 0.2^3 / 12) / 260.93 = 2.2073 mm/N), so it is tied at 19 mm (its top less
-// 3) too: three levels of three bars, the remaining 3 mm some 29 N/mm.
+// Each part between two ties stands by itself on the node below it, and
+// what stands above the top tie starts afresh there. A thin 22 mm column
+// (outer radius 0.6 mm: centre line 0.375, I = pi 0.375^3 0.45 = 0.074551
+// mm^4, E I = 260.93) stands 2.2 N/mm up to 7.0 mm: (7^3 / 3 - 35 x 0.2^3 /
+// 12) / 260.93 = 0.43809 mm/N, 2.283 N/mm (at 7.2: 2.098). Tied every 10
+// mm, its lowest 10 mm would stand 0.78 N/mm. So it is tied at 7.0; the
+// node there gives a third of 0.43809, 0.14603 mm/N, and the part above
+// stands 2.2 on it up to 13.2 mm: 1 / (0.14603 + (6.2^3 / 3 - 31 x 0.2^3 /
+// 12) / 260.93 = 0.30438) = 2.2202 N/mm. On the node at 13.2 (giving
+// 0.15014) the 8.8 mm above would stand 0.98 N/mm (above a tie at 10, the
+// 12 mm would give (12^3 / 3 - 60 x 0.2^3 / 12) / 260.93 = 2.2073 mm/N), so
+// it is tied at 19 mm (its top less 3) too, where its island stands
+// 1 / (0.15014 + 0.24918) = 2.504 N/mm: three levels of three bars, the
+// remaining 3 mm 1 / (0.13310 + 0.03445) = 5.97 N/mm.
 TEST_F(BraceScene, AThinColumnIsTiedWhereItsPartsStandAndNearItsTop) {
     plan::Column c = plain(40, 40, 22);
     c.radius = 0.6;
@@ -291,16 +301,16 @@ TEST_F(BraceScene, AThinColumnIsTiedWhereItsPartsStandAndNearItsTop) {
     const auto thin = plan::pillar_chains(sc);
     EXPECT_NEAR(plan::chain_compliance(thin[0], 22, sc, st, s, 10), 2.2073, 1e-4);
     EXPECT_NEAR(plan::chain_compliance(thin[0], 7, sc, st, s), 0.43809, 1e-5);
-    EXPECT_NEAR(plan::chain_compliance(thin[0], 22, sc, st, s, 14), 0.65397, 1e-5);
+    EXPECT_NEAR(plan::chain_compliance(thin[0], 13.2, sc, st, s, 7), 0.30438, 1e-5);
     EXPECT_EQ(plan::add_braces(sc, st, obs, s, {}), 9);
-    int at7 = 0, at14 = 0, at19 = 0;
+    int at7 = 0, at13 = 0, at19 = 0;
     for (const plan::Bridge& b : sc.bridges) {
         at7 += std::abs(b.z - 7) < 1e-6;
-        at14 += std::abs(b.z - 14) < 1e-6;
+        at13 += std::abs(b.z - 13.2) < 1e-6;
         at19 += std::abs(b.z - 19) < 1e-6;
     }
     EXPECT_EQ(at7, 3);
-    EXPECT_EQ(at14, 3);
+    EXPECT_EQ(at13, 3);
     EXPECT_EQ(at19, 3);
     // A 2 mm column leaves 575.96 / 2303.22 = 0.25007 mm/N above 10 mm
     // (4.0 N/mm): tied at 10 alone (with the 22 mm from the bed far weaker).
@@ -355,6 +365,22 @@ TEST_F(BraceScene, ATriangleTiedOnceIsANodeUnlessTwoOfItsColumnsAreOneOrOneIsATw
     EXPECT_NEAR(stiffness(twig, {10.0, 20.0}), 0.10797, 1e-4);
     // Without the twig both ties are nodes, and the top stands far more.
     EXPECT_GT(stiffness(sc, {10.0, 20.0}), 5 * 0.10797);
+    // The least of the three at a tie, each on the layer under its bars:
+    // tied once at 20, 0.863730 N/mm each. Tied at 14.6 and 29.2 (see the
+    // triangle above): 2.2203 at 14.6, then 1 / (0.150128 + 0.450383) =
+    // 1.6652 at 29.2, on the node's give; at 14.6 and 27.2, 2.2747 at 27.2,
+    // so the least is 14.6's.
+    auto weakest = [&](const std::vector<double>& levels) {
+        const auto chains = plan::pillar_chains(sc);
+        const auto joins = plan::column_meetings(chains, sc, st, s);
+        double corner = 0;
+        plan::tied_stiffness({&chains[0], &chains[1], &chains[2]}, {0, 1, 2}, levels, 0.0, joins,
+                             static_cast<int>(chains.size()), sc, st, s, {}, &corner);
+        return corner;
+    };
+    EXPECT_NEAR(weakest({20.0}), 0.863730, 1e-5);
+    EXPECT_NEAR(weakest({14.6, 29.2}), 1.6652, 1e-4);
+    EXPECT_NEAR(weakest({14.6, 27.2}), 2.2203, 1e-4);
 }
 
 // The same triangle tied at 20 mm, where the first column is tied already

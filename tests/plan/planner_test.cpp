@@ -743,17 +743,21 @@ TEST(PlannerForbidden, NoneNearOnlyWhereNoBarInTheBoxIsForbidden) {
 // The lowest bar whose connector meets METHOD's Standing rule as the
 // planner holds it (half of what the whole may give: 0.5 / (2 x 1.25) =
 // 0.2 mm/N). A 0.75 mm stick of 0.45 mm beads: rc = 0.525, E I = 3500 pi
-// 0.525^3 0.45 = 715.992; a stick H tall gives H^3 / (3 E I) at its top, so
-// H = (0.2 x 3 x 715.992)^(1/3) = 7.5455 mm and the bar (0.4 mm thick)
-// carries a point at z 22.97 from 22.97 - 7.5455 - 0.4 = 15.0245 up. With
-// 0.1 mm/N standing on the point already, H = 5.9888: from 16.5812. With
-// 0.2 mm/N, none: no stick is left any give.
+// 0.525^3 0.45 = 715.992; a stick H tall gives H^3 / (3 E I) at its top.
+// Under it the bar's own two layers, bent about its long axis: offered on
+// the longest bar (30 mm, 31 with its reach into the pillars), two 0.45 mm
+// lines side by side, I = 31 x 0.9^3 / 12 = 1.883250, E I = 6591.375, give
+// ((H + 0.4)^3 - H^3) / (3 x 6591.375). Both together 0.2 mm/N at H =
+// 7.49994 (the stick alone: 7.5455), so the bar carries a point at z 22.97
+// from 22.97 - 7.49994 - 0.4 = 15.07006 up. With 0.1 mm/N standing on the
+// point already, H = 5.94276: from 16.62724. With 0.2 mm/N, none: no stick
+// is left any give.
 TEST(Candidates, TheLowestBarThatCarriesAPointByItsConnectorsGive) {
     Settings s;
     plan::Active a{30, 30, 22.97, 0};
-    EXPECT_NEAR(plan::lowest_carrying_bar(a, s), 15.024526, 1e-5);
+    EXPECT_NEAR(plan::lowest_carrying_bar(a, s), 15.070058, 1e-5);
     a.give = 0.1;
-    EXPECT_NEAR(plan::lowest_carrying_bar(a, s), 16.581153, 1e-5);
+    EXPECT_NEAR(plan::lowest_carrying_bar(a, s), 16.627235, 1e-5);
     a.give = 0.2;
     EXPECT_GT(plan::lowest_carrying_bar(a, s), 22.97 - 0.4 - 1e-6);
     s.min_stiffness = 0;  // the rule off: any bar
@@ -763,9 +767,9 @@ TEST(Candidates, TheLowestBarThatCarriesAPointByItsConnectorsGive) {
 // Five points in a row at z 30, each with 0.19 mm/N standing on it
 // already (a bar end's connectors), the model in the way of a bar on every
 // layer above z 27 (so the highest bar is at 26, its layers 26.2 and 26.4;
-// at 27 and 28 they are blocked): a connector may then give 0.01 mm/N, a stick (0.01 x 3 x
-// 715.992)^(1/3) = 2.78 mm tall, so only a bar from 30 - 2.78 - 0.4 = 26.82
-// up carries them; the bar at 26 (connectors 3.6 mm: 3.6^3 / 2147.98 =
+// at 27 and 28 they are blocked): a connector may then give 0.01 mm/N, a
+// stick 2.7305 mm tall over the longest bar's two layers (the test above),
+// so only a bar from 30 - 2.7305 - 0.4 = 26.8695 up carries them; the bar at 26 (connectors 3.6 mm: 3.6^3 / 2147.98 =
 // 0.0217 mm/N) is not offered (before, it was, carrying all five, and each
 // connector was turned down in turn). With the rule off, that bar.
 TEST(Candidates, NoBarIsOfferedForPointsItsConnectorsCannotHold) {
@@ -775,7 +779,7 @@ TEST(Candidates, NoBarIsOfferedForPointsItsConnectorsCannotHold) {
     m.segment_clear = [](double z, double, double, double, double, double) { return z <= 27 + 1e-9; };
     std::vector<plan::Active> a;
     for (int i = 0; i < 5; ++i) a.push_back({3.0 * i, 0, 30, -1, 30, 0.19});
-    EXPECT_NEAR(plan::lowest_carrying_bar(a[0], s), 26.8201, 1e-3);
+    EXPECT_NEAR(plan::lowest_carrying_bar(a[0], s), 26.8695, 1e-3);
     EXPECT_FALSE(plan::best_bridge(a, m, s).has_value());
     s.min_stiffness = 0;
     const auto c = plan::best_bridge(a, m, s);
