@@ -113,3 +113,45 @@ TEST(BarCheck, AnswersKeptOverPlansAreTheAnswersJudgedAfresh) {
     }
     EXPECT_EQ(cache.answers.size(), all);
 }
+
+// Support exactly three nominal layers under a bar's layer counts beneath
+// it, as the validator counts it (within layers::kZEps), though heights are
+// read from G-code as floats: 38.2 over 37.6 is 38.2000008 - 37.5999985 =
+// 0.6000023 mm, over 3 x 0.2 by more than a micron. The bar at 38.0 (its
+// first layer 38.2) from (20, 20) to (30, 20) on loops at its ends, and the
+// loop of outer radius 2.5 whose edge passes 0.25 mm from its near line
+// (the flank above) only on the layer at 37.6: the bar leaves it along its
+// edge and is not held. The same loop four layers down, at 37.4, is beneath
+// nothing: the bar is held.
+TEST(BarCheck, SupportExactlyThreeLayersDownCountsAsTheValidatorCountsIt) {
+    auto bar_over_flank_at = [](int flank_layer) {
+        Settings s;
+        std::vector<double> zs;
+        for (double z : {37.4, 37.6, 37.8, 38.0, 38.2}) zs.push_back(static_cast<double>(static_cast<float>(z)));
+        const layers::LayerStack st = test::stack_at(zs, [](int, layers::Layer&) {}, {0, 0, 60, 60});
+        plan::Scaffold sc;
+        plan::Bridge br;
+        br.x0 = 20, br.y0 = 20, br.x1 = 30, br.y1 = 20, br.z = 38.0;
+        sc.bridges.push_back(br);
+        toolpath::SupportPaths paths;
+        for (int layer = 0; layer < 5; ++layer) {
+            toolpath::LayerPaths lp;
+            lp.layer = layer;
+            for (double x : {20.0, 30.0}) lp.paths.push_back({toolpath::loop(x, 20, 1.0, s.support_width), s.support_width});
+            if (layer == flank_layer) {
+                const double y = 20 + s.support_width / 2 + 0.25 + 2.5;
+                lp.paths.push_back({toolpath::loop(25, y, 2.5, s.support_width), s.support_width});
+            }
+            if (layer == 4)
+                for (auto& line : toolpath::bar_lines(br, s.support_width, s.pillar_radius))
+                    lp.paths.push_back({line, s.support_width});
+            paths.layers.push_back(std::move(lp));
+        }
+        std::vector<std::size_t> out;
+        for (const toolpath::UnheldBar& u : toolpath::unheld_bars(sc, paths, st, s)) out.push_back(u.bar);
+        return out;
+    };
+    EXPECT_GT(static_cast<double>(static_cast<float>(38.2)) - static_cast<double>(static_cast<float>(37.6)), 0.6 + 1e-6);
+    EXPECT_EQ(bar_over_flank_at(1), std::vector<std::size_t>{0});
+    EXPECT_TRUE(bar_over_flank_at(0).empty());
+}
