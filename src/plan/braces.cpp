@@ -180,6 +180,7 @@ std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chain
             for (double z : tops) {
                 const bool touch = rings_touch(chains[i], chains[j], sc, s, z);
                 if (touch && !touching) out.push_back({z, static_cast<int>(i), static_cast<int>(j)});
+                if (touch) out.back().until = z;
                 touching = touch;
             }
         }

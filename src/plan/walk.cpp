@@ -52,6 +52,13 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
     };
     const std::vector<ColumnMeeting> meetings = column_meetings(chains_, scaffold, stack, settings);
     for (const ColumnMeeting& m : meetings) meet(m);
+    touches_.resize(chains_.size());
+    for (const ColumnMeeting& m : meetings)
+        if (m.bar < 0) {
+            const double to = std::max(m.z, m.until);
+            touches_[static_cast<std::size_t>(m.a)].push_back({m.b, m.z, to});
+            touches_[static_cast<std::size_t>(m.b)].push_back({m.a, m.z, to});
+        }
     // A pillar hung on a bar goes on down through the pillars the bar is on;
     // one on a column, through that column.
     const double w = settings.support_width;
@@ -132,7 +139,13 @@ WalkSums PlanWalk::own(int c, double lo, double hi) const {
         const Seat& seat = seat_[static_cast<std::size_t>(c)];
         const bool on_bar = !piece && seat.inertia > 0 && layer.z > seat.lo + kEps && layer.z <= seat.hi + kEps;
         if (!piece && !on_bar) continue;
-        const double f = layer.height / (s_.modulus * (piece ? column_inertia_at(*piece, layer.z, s_) : seat.inertia));
+        double inertia = piece ? column_inertia_at(*piece, layer.z, s_) : seat.inertia;
+        if (piece)
+            for (const Touch& t : touches_[static_cast<std::size_t>(c)])
+                if (layer.z > t.from - kEps && layer.z < t.to + kEps)
+                    if (const Column* q = chain_piece_at(chains_[static_cast<std::size_t>(t.other)], sc_, layer.z))
+                        inertia += column_inertia_at(*q, layer.z, s_);
+        const double f = layer.height / (s_.modulus * inertia);
         const double zm = layer.z - layer.height / 2;
         out.s0 += f;
         out.s1 += zm * f;

@@ -88,6 +88,14 @@ private:
         double lo = 0, hi = 0, inertia = 0;
     };
     std::vector<Seat> seat_;
+    // Per pillar, the runs of layers on which its loops touch another's:
+    // the validator's island there is both loops, its section at least the
+    // sum of theirs (two rings side by side, about the line through them).
+    struct Touch {
+        int other = 0;
+        double from = 0, to = 0;  // layer tops, inclusive
+    };
+    std::vector<std::vector<Touch>> touches_;
     const std::vector<BraceNode>& nodes_;
     const Scaffold& sc_;
     const layers::LayerStack& stack_;

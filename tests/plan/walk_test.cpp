@@ -164,9 +164,12 @@ TEST_F(WalkScene, ABarThatTakesAStandingColumnsWalkShortOfTheRuleIsReported) {
 // A pillar whose loops touch a corner's on the node's first layer is on the
 // node's island there (METHOD: what stands on the node starts afresh): D, a
 // 1 mm ring from the bed to 30 beside corner 0 of ABraceNodeStartsTheWalkAfresh
-// (centres 1.9 mm apart: loops within a cell). At 30, the node's give
-// 0.385923 and D's own 10 mm above it, (10^3/3 - 50 x 0.000667) / 2303.22 =
-// 0.144710: 0.530633 mm/N, 1.885 N/mm; walked from its base, as before,
+// (centres 1.9 mm apart: loops within a cell). Their loops touch on every
+// layer, so each layer's island is both, its section both rings' (the test
+// below): corner 0 stands 1 / (1.157770 / 2) = 1.727460 N/mm at 20, the
+// node 1.727460 + 2 x 0.863730 = 3.454920, giving 0.289443 mm/N; above it
+// D's 10 mm, both rings again, (10^3/3 - 50 x 0.000667) / 2303.22 / 2 =
+// 0.072355: 0.361798 mm/N at 30. Walked from its base, apart,
 // (30^3/3 - 150 x 0.000667) / 2303.22 = 8999.9 / 2303.22 = 3.907529 mm/N.
 TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
     triangle(1.0, 1.0, 1.0);
@@ -175,11 +178,12 @@ TEST_F(WalkScene, APillarTouchingACornerOnTheTieStandsOnTheNode) {
     ASSERT_EQ(chains.size(), 4u);
     ASSERT_TRUE(plan::rings_touch(chains[0], chains[3], sc, s, 20.2));
     plan::PlanWalk walk(chains, tie_at_20, sc, st, s);
-    EXPECT_NEAR(walk.path(3, 30).at(30), 0.530633, 1e-5);
+    EXPECT_NEAR(walk.path(3, 30).at(30), 0.361798, 1e-5);
     EXPECT_NEAR(walk.node_below(3, 30), 20, 1e-9);
-    // Just over the node, as it reaches the node's layer from below: its own
-    // ring from the bed, (20.4^3/3 - 102 x 0.000667) / 2303.22 = 1.228636.
-    EXPECT_NEAR(walk.path_from_below(3, 20, 20.4).at(20.4), 1.228636, 1e-5);
+    // Just over the node, as it reaches the node's layer from below: from
+    // the bed, both rings, (20.4^3/3 - 102 x 0.000667) / 2303.22 / 2 =
+    // 1.228636 / 2 = 0.614318.
+    EXPECT_NEAR(walk.path_from_below(3, 20, 20.4).at(20.4), 0.614318, 1e-5);
     // Moved 3 mm off corner 0 it touches nothing: its own way down.
     sc.columns[3].y0 = sc.columns[3].y1 = 27;
     plan::PlanWalk apart(plan::pillar_chains(sc), tie_at_20, sc, st, s);
@@ -206,4 +210,27 @@ TEST_F(WalkScene, ATwigsNodeIsADepartureToTheStiffest) {
     // 20 mm, ((40^3 - 20^3)/3 - 100 x 0.000667) / 8026.83 = 2.325531 and
     // 1.157770: 3.483301 mm/N.
     EXPECT_NEAR(walk.path(0, 40).at(40), 3.483301, 1e-5);
+}
+
+// Where two pillars' loops touch, the validator's island on those layers is
+// both loops, and its section at least the sum of theirs (two rings side by
+// side, bent about the line through their centres). A, a 2 mm ring from
+// the bed to 20, and B, another 1.9 mm beside it to 10: from the bed to 10
+// the walk counts E I = 2 x 2303.22, above it A's own: (20^3 - 10^3) / 3 -
+// 50 x 0.2^3 / 12 = 2333.30 over 4606.44, and 10^3 / 3 - 50 x 0.2^3 / 12 =
+// 333.30 over 2303.22: 0.506530 + 0.144710 = 0.651240 mm/N, 1.5355 N/mm at
+// A's top, where A alone (as the walk had it, and the planner warned of
+// the shuttle's columns so at 1.24 N/mm where the validator found 2.13)
+// stands 0.8637 (METHOD's 20 mm ring).
+TEST_F(WalkScene, LoopsTouchingAreOneSectionWhereTheyTouch) {
+    sc.columns.push_back(ring(30, 30, 0, 20, 1.0));
+    sc.columns.push_back(ring(31.9, 30, 0, 10, 1.0));
+    const auto chains = plan::pillar_chains(sc);
+    ASSERT_EQ(chains.size(), 2u);
+    const auto meets = plan::column_meetings(chains, sc, st, s);
+    ASSERT_EQ(meets.size(), 1u);
+    EXPECT_NEAR(meets[0].z, 0.2, 1e-9);
+    EXPECT_NEAR(meets[0].until, 10.0, 1e-9);
+    plan::PlanWalk walk(chains, {}, sc, st, s);
+    EXPECT_NEAR(walk.path(0, 20).at(20), 0.651240, 1e-5);
 }
