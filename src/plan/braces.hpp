@@ -71,7 +71,8 @@ struct ColumnMeeting {
     double z;
     int a, b;
     int bar = -1;  // the bar of the plan they meet by (index into Scaffold::bridges); -1: loops touching
-    // Loops touching: the last layer of the run they touch on (0: z alone).
+    // Loops touching: the last layer of the run they touch on (z or above;
+    // column_meetings sets it). Bars: 0.
     double until = 0;
 };
 std::vector<ColumnMeeting> column_meetings(const std::vector<PillarChain>& chains, const Scaffold& scaffold,

@@ -55,9 +55,8 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
     touches_.resize(chains_.size());
     for (const ColumnMeeting& m : meetings)
         if (m.bar < 0) {
-            const double to = std::max(m.z, m.until);
-            touches_[static_cast<std::size_t>(m.a)].push_back({m.b, m.z, to});
-            touches_[static_cast<std::size_t>(m.b)].push_back({m.a, m.z, to});
+            touches_[static_cast<std::size_t>(m.a)].push_back({m.b, m.z, m.until});
+            touches_[static_cast<std::size_t>(m.b)].push_back({m.a, m.z, m.until});
         }
     // A pillar hung on a bar goes on down through the pillars the bar is on;
     // one on a column, through that column.
@@ -133,15 +132,16 @@ PlanWalk::PlanWalk(const std::vector<PillarChain>& chains, const std::vector<Bra
 WalkSums PlanWalk::own(int c, double lo, double hi) const {
     WalkSums out;
     const PillarChain& chain = chains_[static_cast<std::size_t>(c)];
+    const Seat& seat = seat_[static_cast<std::size_t>(c)];
+    const std::vector<Touch>& touches = touches_[static_cast<std::size_t>(c)];
     for (const layers::Layer& layer : stack_.layers) {
         if (layer.purge || layer.z > hi + kEps || layer.z <= lo + kEps) continue;
         const Column* piece = chain_piece_at(chain, sc_, layer.z);
-        const Seat& seat = seat_[static_cast<std::size_t>(c)];
         const bool on_bar = !piece && seat.inertia > 0 && layer.z > seat.lo + kEps && layer.z <= seat.hi + kEps;
         if (!piece && !on_bar) continue;
         double inertia = piece ? column_inertia_at(*piece, layer.z, s_) : seat.inertia;
         if (piece)
-            for (const Touch& t : touches_[static_cast<std::size_t>(c)])
+            for (const Touch& t : touches)
                 if (layer.z > t.from - kEps && layer.z < t.to + kEps)
                     if (const Column* q = chain_piece_at(chains_[static_cast<std::size_t>(t.other)], sc_, layer.z))
                         inertia += column_inertia_at(*q, layer.z, s_);

@@ -49,6 +49,13 @@ struct Ring {
     double x, y, rc;  // centre and centre-line radius
 };
 
+// The air between a loop of centre-line radius rc around (x, y) and the
+// ring `o` around it, bead edge to bead edge (beads w wide): negative where
+// the loop is not wholly inside.
+double room_inside(const Ring& o, double x, double y, double rc, double w) {
+    return o.rc - std::hypot(x - o.x, y - o.y) - rc - w;
+}
+
 // A column's loop of outer radius r around (cx, cy) and, for a wide column
 // not sized for METHOD's Standing rule, a second wall inside it (for the
 // same stiffness a wider single wall costs less): outer first.
@@ -238,8 +245,7 @@ void spoke_inner_loops(std::vector<Path>& paths, const std::vector<Ring>& firsts
     auto enclosing = [&](const Ring& in, const std::vector<Ring>& of) {
         const Ring* out = nullptr;
         for (const Ring& o : of) {
-            const double d = std::hypot(in.x - o.x, in.y - o.y);
-            if (o.rc - d - in.rc - w > slack && (!out || o.rc < out->rc)) out = &o;
+            if (room_inside(o, in.x, in.y, in.rc, w) > slack && (!out || o.rc < out->rc)) out = &o;
         }
         return out;
     };
@@ -679,12 +685,10 @@ SupportPaths make_paths(const plan::Scaffold& scaffold, const layers::LayerStack
                 // at --min-stiffness 10: 5.0 N/mm inside a 2 mm trunk). The
                 // wider one carries it; where it leaves, its first loop is
                 // spoked to it (spoke_inner_loops). Not in its tip.
-                auto inside = [&](const Ring& o, double x, double y, double rc_) {
-                    return std::hypot(x - o.x, y - o.y) + rc_ + w <= o.rc;
-                };
                 if (up && (up->top == plan::Top::Column || up->z1 > z2 + h2 + kZEps) &&
-                    std::any_of(rings.begin(), rings.end(),
-                                [&](const Ring& o) { return inside(o, cx, cy, rc) && inside(o, cx2, cy2, rc2); }))
+                    std::any_of(rings.begin(), rings.end(), [&](const Ring& o) {
+                        return room_inside(o, cx, cy, rc, w) >= 0 && room_inside(o, cx2, cy2, rc2, w) >= 0;
+                    }))
                     continue;
             }
             rings.push_back({cx, cy, rc});
